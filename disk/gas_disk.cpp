@@ -1,0 +1,115 @@
+#include "disk/gas_disk.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "src/config.hpp"
+#include "src/grid.hpp"
+#include "src/units.hpp"
+
+namespace panoptic {
+
+using units::kAu;
+using units::kPi;
+
+double GasDisk::temperature(double r) const {
+  const double t = th_.T_1au * std::pow(star_.luminosity / units::kLsun, 0.25) *
+                   std::pow(r / kAu, -th_.q);
+  return std::max(t, th_.T_floor);
+}
+
+double GasDisk::c_s(double r) const {
+  return std::sqrt(units::kBoltzmann * temperature(r) / (th_.mu * units::kMassH));
+}
+
+double GasDisk::v_th(double r) const { return std::sqrt(8.0 / kPi) * c_s(r); }
+
+double GasDisk::omega_k(double r) const {
+  return std::sqrt(units::kG * star_.mass / (r * r * r));
+}
+
+double GasDisk::v_k(double r) const { return omega_k(r) * r; }
+
+double GasDisk::h_g(double r) const { return c_s(r) / omega_k(r); }
+
+double GasDisk::nu(double r) const { return th_.alpha * c_s(r) * h_g(r); }
+
+double GasDisk::rho_mid(double sigma_g, double r) const {
+  return sigma_g / (std::sqrt(2.0 * kPi) * h_g(r));
+}
+
+double GasDisk::pressure(double sigma_g, double r) const {
+  const double cs = c_s(r);
+  return rho_mid(sigma_g, r) * cs * cs;
+}
+
+double GasDisk::mfp(double rho_g) const {
+  return th_.mu * units::kMassH / (th_.sigma_mol * rho_g);
+}
+
+double GasDisk::r_snow() const {
+  // T_1 L^(1/4) (r/au)^-q = T_sub  ->  r = au (T_1 L^(1/4) / T_sub)^(1/q)
+  const double t1 = th_.T_1au * std::pow(star_.luminosity / units::kLsun, 0.25);
+  if (th_.q <= 0.0 || th_.T_sub < th_.T_floor)
+    return std::numeric_limits<double>::quiet_NaN();
+  return kAu * std::pow(t1 / th_.T_sub, 1.0 / th_.q);
+}
+
+double PowerLawDisk::sigma_g(double r) const {
+  return sigma_1au_ * std::pow(r / kAu, -p_);
+}
+
+double Lbp74Disk::sigma_g(double r) const {
+  const double x = r / r_c_;
+  return (2.0 - gamma_) * m_disk_ / (2.0 * kPi * r_c_ * r_c_) * std::pow(x, -gamma_) *
+         std::exp(-std::pow(x, 2.0 - gamma_));
+}
+
+std::unique_ptr<GasDisk> make_disk(const Config& cfg) {
+  Star star{cfg.real("star.mass_msun") * units::kMsun,
+            cfg.real("star.luminosity_lsun") * units::kLsun};
+  ThermalParams th;
+  th.T_1au = cfg.real("disk.T_1au");
+  th.q = cfg.real("disk.q");
+  th.T_floor = cfg.real("disk.T_floor");
+  th.mu = cfg.real("disk.mu");
+  th.alpha = cfg.real("disk.alpha");
+  th.sigma_mol = cfg.real("disk.sigma_mol");
+  th.T_sub = cfg.real("disk.T_sub");
+  if (cfg.str("disk.model") == "lbp")
+    return std::make_unique<Lbp74Disk>(
+        star, th, cfg.real("disk.m_disk_msun") * units::kMsun,
+        cfg.real("disk.r_c_au") * kAu, cfg.real("disk.gamma"));
+  return std::make_unique<PowerLawDisk>(star, th, cfg.real("disk.sigma_1au"),
+                                        cfg.real("disk.p"));
+}
+
+std::vector<double> dlnp_dlnr_centres(const GasDisk& disk, const Grid& grid,
+                                      const std::vector<double>& sigma_g) {
+  const int n = grid.n_cells();
+  std::vector<double> lnp(n), out(n);
+  for (int i = 0; i < n; ++i) lnp[i] = std::log(disk.pressure(sigma_g[i], grid.r_c(i)));
+  const double h = grid.dlnr();  // uniform spacing of ln r_c
+  for (int i = 0; i < n; ++i) {
+    if (i == 0)
+      out[i] = (lnp[1] - lnp[0]) / h;
+    else if (i == n - 1)
+      out[i] = (lnp[n - 1] - lnp[n - 2]) / h;
+    else
+      out[i] = (lnp[i + 1] - lnp[i - 1]) / (2.0 * h);
+  }
+  return out;
+}
+
+std::vector<double> eta_centres(const GasDisk& disk, const Grid& grid,
+                                const std::vector<double>& sigma_g) {
+  auto eta = dlnp_dlnr_centres(disk, grid, sigma_g);
+  for (int i = 0; i < grid.n_cells(); ++i) {
+    const double hr = disk.h_g(grid.r_c(i)) / grid.r_c(i);
+    eta[i] *= -0.5 * hr * hr;
+  }
+  return eta;
+}
+
+}  // namespace panoptic

@@ -1,0 +1,108 @@
+#pragma once
+//! The gas disk (spec §1): stellar parameters, the initial or static surface density
+//! profile, and the thermal structure that follows from the temperature power law.
+//! Everything cgs. Profiles are virtual (PowerLawDisk, Lbp74Disk); the thermal structure,
+//! midplane density, mean free path and pressure are common to all profiles.
+#include <memory>
+#include <string_view>
+#include <vector>
+
+namespace panoptic {
+
+class Config;
+class Grid;
+
+struct Star {
+  double mass = 0.0;        //!< [g]
+  double luminosity = 0.0;  //!< [erg s^-1]
+};
+
+struct ThermalParams {
+  double T_1au = 280.0;      //!< temperature at 1 au for L = L_sun [K]
+  double q = 0.5;            //!< T ∝ r^-q
+  double T_floor = 10.0;     //!< [K]
+  double mu = 2.34;          //!< mean molecular weight
+  double alpha = 1e-3;       //!< Shakura-Sunyaev alpha
+  double sigma_mol = 2e-15;  //!< molecular cross section [cm^2]
+  double T_sub = 170.0;      //!< ice sublimation temperature [K]
+};
+
+class GasDisk {
+ public:
+  GasDisk(const Star& star, const ThermalParams& thermal) : star_(star), th_(thermal) {}
+  virtual ~GasDisk() = default;
+
+  virtual std::string_view name() const = 0;
+  //! Initial (and, for static gas, permanent) gas surface density [g cm^-2].
+  virtual double sigma_g(double r) const = 0;
+
+  const Star& star() const { return star_; }
+  const ThermalParams& thermal() const { return th_; }
+  double alpha() const { return th_.alpha; }
+
+  //! T = T_1au (L/L_sun)^(1/4) (r/au)^-q, floored at T_floor [K] (spec §1.3).
+  double temperature(double r) const;
+  //! Isothermal sound speed sqrt(k_B T / (mu m_H)) [cm s^-1] (spec §1.3).
+  double c_s(double r) const;
+  //! Mean thermal speed sqrt(8/pi) c_s [cm s^-1] (spec §1.3).
+  double v_th(double r) const;
+  //! Keplerian angular frequency sqrt(G M / r^3) [s^-1].
+  double omega_k(double r) const;
+  //! Keplerian speed [cm s^-1].
+  double v_k(double r) const;
+  //! Pressure scale height c_s / Omega_K [cm].
+  double h_g(double r) const;
+  //! Turbulent viscosity = gas diffusivity alpha c_s H [cm^2 s^-1] (spec §1.5, Sc = 1).
+  double nu(double r) const;
+  //! Midplane density Sigma / (sqrt(2 pi) H) [g cm^-3] (spec §1.3).
+  double rho_mid(double sigma_g, double r) const;
+  //! Midplane pressure rho c_s^2 [dyn cm^-2] (spec §1.3).
+  double pressure(double sigma_g, double r) const;
+  //! Mean free path mu m_H / (sigma_mol rho) [cm] (spec §1.6).
+  double mfp(double rho_g) const;
+  //! Snow-line radius where T = T_sub [cm] (spec §1.7); NaN when T never equals T_sub.
+  double r_snow() const;
+
+ private:
+  Star star_;
+  ThermalParams th_;
+};
+
+//! Sigma_g = sigma_1au (r/au)^-p: MMSN for sigma_1au = 1700, p = 1.5 (spec §1.2 A).
+class PowerLawDisk : public GasDisk {
+ public:
+  PowerLawDisk(const Star& star, const ThermalParams& th, double sigma_1au, double p)
+      : GasDisk(star, th), sigma_1au_(sigma_1au), p_(p) {}
+  std::string_view name() const override { return "powerlaw"; }
+  double sigma_g(double r) const override;
+
+ private:
+  double sigma_1au_, p_;
+};
+
+//! Lynden-Bell & Pringle (1974) similarity profile at t = 0 (spec §1.2 B):
+//! Sigma = (2-gamma) M/(2 pi r_c^2) (r/r_c)^-gamma exp[-(r/r_c)^(2-gamma)].
+class Lbp74Disk : public GasDisk {
+ public:
+  Lbp74Disk(const Star& star, const ThermalParams& th, double m_disk, double r_c,
+            double gamma)
+      : GasDisk(star, th), m_disk_(m_disk), r_c_(r_c), gamma_(gamma) {}
+  std::string_view name() const override { return "lbp"; }
+  double sigma_g(double r) const override;
+
+ private:
+  double m_disk_, r_c_, gamma_;
+};
+
+//! Builds the disk the scene asks for (keys star.*, disk.*).
+std::unique_ptr<GasDisk> make_disk(const Config& cfg);
+
+//! dlnP/dlnr at cell centres from the pressure of `sigma_g` [per cell]: centred
+//! differences in ln r inside, one-sided at the two ends (spec §1.4: numerical gradient).
+std::vector<double> dlnp_dlnr_centres(const GasDisk& disk, const Grid& grid,
+                                      const std::vector<double>& sigma_g);
+//! eta = -1/2 (H/r)^2 dlnP/dlnr at cell centres (spec §1.4).
+std::vector<double> eta_centres(const GasDisk& disk, const Grid& grid,
+                                const std::vector<double>& sigma_g);
+
+}  // namespace panoptic

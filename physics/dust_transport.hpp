@@ -1,0 +1,88 @@
+#pragma once
+//! Radial transport of the dust surface density (spec §6.1, §6.3):
+//!   dSigma_d/dt + (1/r) d(r F_d)/dr = 0,
+//!   F_d = Sigma_d v_r - D_d Sigma_g d(Sigma_d/Sigma_g)/dr,
+//!   v_r = -2 St eta v_K/(1+St^2) + v_g/(1+St^2),   D_d = alpha c_s H/(1+St^2)
+//! (Youdin & Lithwick 2007 for D_d). Finite volumes on the log grid: first-order upwind
+//! advection and centred diffusion of the concentration on the faces, so the mass moved
+//! between cells cancels exactly and the budget closes to round-off.
+//! Boundaries (spec §6.3): inner face open (outflow with the upwind state, no diffusive
+//! flux, no inflow; the mass that leaves is booked in the global variable m_out_dust);
+//! outer face closed (zero flux).
+//! Other conserved quantities that ride with the dust (the log-moments Q_m, Q_phi of
+//! spec §6.2) are "passengers": add_passenger() transports them with the same operator.
+//! Jacobian: exact, by forward-mode AD of the face flux over its two-cell stencil.
+#include <array>
+#include <span>
+#include <vector>
+
+#include "disk/gas_column.hpp"
+#include "physics/stokes_model.hpp"
+#include "src/physics_module.hpp"
+#include "src/state_layout.hpp"
+
+namespace panoptic {
+
+class GasDisk;
+class Grid;
+struct ViscousStencil;
+
+struct DustTransportOptions {
+  bool drift = true;      //!< advection by v_r (drift, and gas motion when it evolves)
+  bool diffusion = true;  //!< turbulent diffusion
+};
+
+class DustTransport : public PhysicsModule {
+ public:
+  //! Registers Sigma_d (cell) and m_out_dust (global). `viscous` is null for static gas.
+  //! `sigma_scale` [g cm^-2] sets CVODE's absolute tolerance scale; `dust_mass` [g] is
+  //! the unit of the booked outflow.
+  DustTransport(StateLayout& layout, const Grid& grid, const GasDisk& disk,
+                const GasColumn& gas, const ViscousStencil* viscous,
+                const StokesModel& stokes, DustTransportOptions options,
+                double sigma_scale, double dust_mass);
+
+  //! Transports another cell variable with the same flux operator (before set-up ends).
+  void add_passenger(int slot) { transported_.push_back(slot); }
+
+  std::string_view name() const override { return "dust_transport"; }
+  void declare_pattern(PatternBuilder& pattern) const override;
+  void add_rhs(double t, std::span<const double> y,
+               std::span<double> ydot) const override;
+  void add_jacobian(double t, std::span<const double> y,
+                    JacobianValues& jac) const override;
+
+  int sigma_slot() const { return slot_; }
+  int m_out_slot() const { return g_out_; }
+  double mass_unit() const { return mass_unit_; }
+  //! Dust mass flow through every face, positive outward [g s^-1]; n_cells + 1 entries.
+  std::vector<double> mass_flow(std::span<const double> y) const;
+  //! Dust radial velocity on every face [cm s^-1] (0 on the outer face).
+  std::vector<double> face_velocity(std::span<const double> y) const;
+
+ private:
+  static constexpr int kMaxVars = 8;
+  //! Mass-like flows 2 pi r_f F through face f for every transported variable.
+  //! ya, yb: states of the two cells of the stencil (f-1 and f; at f = 0: 0 and 1).
+  template <class T>
+  void face_flows(int f, const T* ya, const T* yb, T* flows) const;
+  template <class T>
+  T velocity(int f, const T* ya, const T* yb, const T& st) const;
+
+  const StateLayout& layout_;
+  const Grid& grid_;
+  const GasColumn& gas_;
+  const ViscousStencil* viscous_;
+  const StokesModel& stokes_;
+  DustTransportOptions opt_;
+  int slot_ = -1, g_out_ = -1;
+  double mass_unit_ = 1.0;
+  std::vector<int> transported_;
+  // Per face (0..n-1): 2 pi r_f, centre spacing, gas diffusivity, (H/r)^2 v_K, and the
+  // static eta v_K (used when the gas does not evolve).
+  std::vector<double> two_pi_r_, dr_, d_gas_, hr2vk_, eta_vk_static_;
+  std::vector<double> two_pi_rc_;    //!< per cell: 2 pi r_c, for the upwinded r Sigma
+  std::vector<double> ln_cs_omega_;  //!< per cell: ln(c_s Omega_K), for ln P
+};
+
+}  // namespace panoptic

@@ -1,0 +1,8 @@
+"""Postprocessing for panoptic run files (one HDF5 file per run).
+
+Modules:
+    reader    -- ``load_run(path) -> Run``: read a run file into numpy arrays.
+    analytic  -- closed-form solutions used by the regression tests.
+    plot      -- ``python3 -m postprocess.plot RUN.h5``: diagnostic figures.
+    test_postprocess -- self-test, ``python3 -m postprocess.test_postprocess``.
+"""

@@ -1,0 +1,79 @@
+#include "src/disk_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+
+namespace panoptic {
+namespace {
+
+SparsityPattern build_pattern(
+    const StateLayout& layout,
+    const std::vector<std::unique_ptr<PhysicsModule>>& modules) {
+  PatternBuilder builder(layout.size());
+  for (const auto& m : modules) m->declare_pattern(builder);
+  return SparsityPattern(builder);
+}
+
+//! Index of the first non-finite entry, or -1.
+long first_non_finite(std::span<const double> v) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i])) return static_cast<long>(i);
+  return -1;
+}
+
+}  // namespace
+
+DiskModel::DiskModel(std::shared_ptr<const StateLayout> layout,
+                     std::vector<std::unique_ptr<PhysicsModule>> modules)
+    : layout_(std::move(layout)),
+      modules_(std::move(modules)),
+      pattern_(build_pattern(*layout_, modules_)) {}
+
+void DiskModel::rhs(double t, std::span<const double> y, std::span<double> ydot) const {
+  std::fill(ydot.begin(), ydot.end(), 0.0);
+  for (const auto& m : modules_) m->add_rhs(t, y, ydot);
+}
+
+void DiskModel::jacobian(double t, std::span<const double> y,
+                         std::span<double> values) const {
+  std::fill(values.begin(), values.end(), 0.0);
+  JacobianValues jac(pattern_, values);
+  for (const auto& m : modules_) m->add_jacobian(t, y, jac);
+}
+
+int DiskModel::rhs_nothrow(double t, std::span<const double> y,
+                           std::span<double> ydot) noexcept {
+  try {
+    rhs(t, y, ydot);
+    if (const long i = first_non_finite(ydot); i >= 0) {
+      last_error_ = "non-finite right-hand side for " + layout_->describe(i);
+      return 1;
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    last_error_ = std::string("right-hand side: ") + e.what();
+  } catch (...) {
+    last_error_ = "right-hand side: unknown exception";
+  }
+  return -1;
+}
+
+int DiskModel::jacobian_nothrow(double t, std::span<const double> y,
+                                std::span<double> values) noexcept {
+  try {
+    jacobian(t, y, values);
+    if (first_non_finite(values) >= 0) {
+      last_error_ = "non-finite Jacobian entry";
+      return 1;
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    last_error_ = std::string("Jacobian: ") + e.what();
+  } catch (...) {
+    last_error_ = "Jacobian: unknown exception";
+  }
+  return -1;
+}
+
+}  // namespace panoptic

@@ -1,0 +1,36 @@
+#pragma once
+//! The error hierarchy of panoptic. main() maps each class to an exit code:
+//! ConfigError -> 2 (bad input), SolverError -> 3, IoError -> 4.
+#include <stdexcept>
+#include <string>
+
+namespace panoptic {
+
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+  virtual int exit_code() const { return 1; }
+};
+
+//! Bad input: scene file, --set override, command line. Exit code 2.
+class ConfigError : public Error {
+ public:
+  using Error::Error;
+  int exit_code() const override { return 2; }
+};
+
+//! CVODE failed or the model produced an unrecoverable state. Exit code 3.
+class SolverError : public Error {
+ public:
+  using Error::Error;
+  int exit_code() const override { return 3; }
+};
+
+//! A file could not be read or written. Exit code 4.
+class IoError : public Error {
+ public:
+  using Error::Error;
+  int exit_code() const override { return 4; }
+};
+
+}  // namespace panoptic

@@ -1,0 +1,195 @@
+#include "src/h5.hpp"
+
+#include <array>
+
+#include "src/error.hpp"
+
+namespace panoptic::h5 {
+namespace {
+
+hid_t ok(hid_t id, const std::string& what) {
+  if (id < 0) throw IoError("HDF5: " + what + " failed");
+  return id;
+}
+void ok(herr_t status, const char* what, const std::string& name) {
+  if (status < 0) throw IoError(std::string("HDF5: ") + what + " '" + name + "' failed");
+}
+
+void describe(hid_t ds, const std::string& units, const std::string& description) {
+  set_attr(ds, "units", units);
+  set_attr(ds, "description", description);
+}
+
+}  // namespace
+
+Handle& Handle::operator=(Handle&& o) noexcept {
+  if (this != &o) {
+    reset();
+    id_ = o.id_;
+    closer_ = o.closer_;
+    o.id_ = -1;
+  }
+  return *this;
+}
+
+void Handle::reset() {
+  if (id_ >= 0 && closer_) closer_(id_);
+  id_ = -1;
+}
+
+void quiet_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+Handle create_file(const std::string& path) {
+  return {ok(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+             "creating file " + path),
+          H5Fclose};
+}
+
+Handle open_file(const std::string& path, bool writable) {
+  return {ok(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT),
+             "opening file " + path),
+          H5Fclose};
+}
+
+Handle create_group(hid_t parent, const std::string& name) {
+  return {ok(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+             "creating group " + name),
+          H5Gclose};
+}
+
+Handle open_group(hid_t parent, const std::string& name) {
+  return {ok(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), "opening group " + name),
+          H5Gclose};
+}
+
+bool exists(hid_t parent, const std::string& path) {
+  return H5Lexists(parent, path.c_str(), H5P_DEFAULT) > 0;
+}
+
+void write_vector(hid_t parent, const std::string& name, std::span<const double> data,
+                  const std::string& units, const std::string& description) {
+  const hsize_t dims[1] = {data.size()};
+  Handle space(ok(H5Screate_simple(1, dims, nullptr), "dataspace"), H5Sclose);
+  Handle ds(ok(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                          H5P_DEFAULT, H5P_DEFAULT),
+               "creating dataset " + name),
+            H5Dclose);
+  ok(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+     "writing", name);
+  describe(ds.get(), units, description);
+}
+
+void create_stack(hid_t parent, const std::string& name, hsize_t width,
+                  const std::string& units, const std::string& description) {
+  const int rank = width > 0 ? 2 : 1;
+  const hsize_t dims[2] = {0, width}, maxdims[2] = {H5S_UNLIMITED, width};
+  const hsize_t chunk[2] = {1, width > 0 ? width : 1};
+  const hsize_t chunk1[1] = {64};
+  Handle space(ok(H5Screate_simple(rank, dims, maxdims), "dataspace"), H5Sclose);
+  Handle dcpl(ok(H5Pcreate(H5P_DATASET_CREATE), "property list"), H5Pclose);
+  ok(H5Pset_chunk(dcpl.get(), rank, rank == 2 ? chunk : chunk1), "chunking", name);
+  Handle ds(ok(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                          dcpl.get(), H5P_DEFAULT),
+               "creating dataset " + name),
+            H5Dclose);
+  describe(ds.get(), units, description);
+}
+
+void append_row(hid_t parent, const std::string& name, std::span<const double> row) {
+  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
+            H5Dclose);
+  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::array<hsize_t, 2> dims{0, 0};
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  const hsize_t width = rank == 2 ? dims[1] : 1;
+  if (row.size() != width) throw IoError("HDF5: row of wrong length for " + name);
+  std::array<hsize_t, 2> new_dims{dims[0] + 1, dims[1]};
+  ok(H5Dset_extent(ds.get(), new_dims.data()), "extending", name);
+  Handle fspace(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
+  const std::array<hsize_t, 2> start{dims[0], 0}, count{1, width};
+  ok(H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr,
+                         count.data(), nullptr),
+     "selecting", name);
+  const hsize_t mdims[1] = {width};
+  Handle mspace(ok(H5Screate_simple(1, mdims, nullptr), "dataspace"), H5Sclose);
+  ok(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, mspace.get(), fspace.get(), H5P_DEFAULT,
+              row.data()),
+     "writing", name);
+}
+
+hsize_t stack_rows(hid_t parent, const std::string& name) {
+  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
+            H5Dclose);
+  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
+  std::array<hsize_t, 2> dims{0, 0};
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  return dims[0];
+}
+
+std::vector<double> read_doubles(hid_t parent, const std::string& name) {
+  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
+            H5Dclose);
+  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<double> out(static_cast<std::size_t>(n));
+  if (n > 0)
+    ok(H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
+       "reading", name);
+  return out;
+}
+
+void set_attr(hid_t obj, const std::string& name, const std::string& value) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  Handle type(ok(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
+  H5Tset_size(type.get(), value.empty() ? 1 : value.size());
+  H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  Handle space(ok(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
+  Handle attr(
+      ok(H5Acreate2(obj, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+         "creating attribute " + name),
+      H5Aclose);
+  const std::string v = value.empty() ? std::string(1, '\0') : value;
+  ok(H5Awrite(attr.get(), type.get(), v.data()), "writing attribute", name);
+}
+
+void set_attr(hid_t obj, const std::string& name, double value) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  Handle space(ok(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
+  Handle attr(ok(H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                            H5P_DEFAULT),
+                 "creating attribute " + name),
+              H5Aclose);
+  ok(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, &value), "writing attribute", name);
+}
+
+void set_attr(hid_t obj, const std::string& name, long value) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  Handle space(ok(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
+  Handle attr(ok(H5Acreate2(obj, name.c_str(), H5T_STD_I64LE, space.get(), H5P_DEFAULT,
+                            H5P_DEFAULT),
+                 "creating attribute " + name),
+              H5Aclose);
+  ok(H5Awrite(attr.get(), H5T_NATIVE_LONG, &value), "writing attribute", name);
+}
+
+std::string get_attr_string(hid_t obj, const std::string& name) {
+  Handle attr(ok(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "opening attribute " + name),
+              H5Aclose);
+  Handle type(ok(H5Aget_type(attr.get()), "attribute type"), H5Tclose);
+  const std::size_t size = H5Tget_size(type.get());
+  std::string s(size, '\0');
+  ok(H5Aread(attr.get(), type.get(), s.data()), "reading attribute", name);
+  if (const auto nul = s.find('\0'); nul != std::string::npos) s.resize(nul);
+  return s;
+}
+
+double get_attr_double(hid_t obj, const std::string& name) {
+  Handle attr(ok(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "opening attribute " + name),
+              H5Aclose);
+  double v = 0.0;
+  ok(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &v), "reading attribute", name);
+  return v;
+}
+
+}  // namespace panoptic::h5

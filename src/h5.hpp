@@ -1,0 +1,62 @@
+#pragma once
+//! Thin RAII over the HDF5 C API (serial): handles close themselves, every failure throws
+//! IoError naming the file and object. Only what panoptic writes: groups, fixed and
+//! extendible (time-stacked) double datasets, string/number attributes.
+#include <hdf5.h>
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace panoptic::h5 {
+
+//! Owns one hid_t and closes it with the matching H5*close.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  ~Handle() { reset(); }
+  Handle(Handle&& o) noexcept : id_(o.id_), closer_(o.closer_) { o.id_ = -1; }
+  Handle& operator=(Handle&& o) noexcept;
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  void reset();
+
+ private:
+  hid_t id_ = -1;
+  Closer closer_ = nullptr;
+};
+
+//! Creates (truncating) or opens an HDF5 file.
+Handle create_file(const std::string& path);
+Handle open_file(const std::string& path, bool writable);
+Handle create_group(hid_t parent, const std::string& name);
+Handle open_group(hid_t parent, const std::string& name);
+bool exists(hid_t parent, const std::string& path);
+
+//! Fixed-size 1-D double dataset.
+void write_vector(hid_t parent, const std::string& name, std::span<const double> data,
+                  const std::string& units, const std::string& description);
+//! Extendible dataset of shape (0, width) (width 0: shape (0,)), chunked along time.
+void create_stack(hid_t parent, const std::string& name, hsize_t width,
+                  const std::string& units, const std::string& description);
+//! Appends one row to a stack created by create_stack.
+void append_row(hid_t parent, const std::string& name, std::span<const double> row);
+//! Number of rows of a stack.
+hsize_t stack_rows(hid_t parent, const std::string& name);
+//! Reads a whole double dataset (any rank, flattened).
+std::vector<double> read_doubles(hid_t parent, const std::string& name);
+
+void set_attr(hid_t obj, const std::string& name, const std::string& value);
+void set_attr(hid_t obj, const std::string& name, double value);
+void set_attr(hid_t obj, const std::string& name, long value);
+std::string get_attr_string(hid_t obj, const std::string& name);
+double get_attr_double(hid_t obj, const std::string& name);
+
+//! Silences HDF5's own error stack printing (we throw IoError with our own message).
+void quiet_errors();
+
+}  // namespace panoptic::h5

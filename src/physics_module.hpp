@@ -1,0 +1,30 @@
+#pragma once
+//! A physical process as seen by the integrator (Cantera getJacobianElements; DustPy's
+//! J_hyd + J_coag + ...). Modules *add* their terms to ydot and J, never overwrite, so a
+//! scene's model is the sum of the modules it turns on and a process that is off costs
+//! nothing.
+//!
+//! NEW_PROCESS: derive from PhysicsModule, register its variables with the StateLayout in
+//! its constructor, and create it in src/model_factory.cpp when the scene turns it on.
+#include <span>
+#include <string_view>
+
+#include "src/sparsity.hpp"
+
+namespace panoptic {
+
+class PhysicsModule {
+ public:
+  virtual ~PhysicsModule() = default;
+  virtual std::string_view name() const = 0;
+  //! Declare every (row, col) this module may ever write. Called once, at set-up.
+  virtual void declare_pattern(PatternBuilder& pattern) const = 0;
+  //! ydot += F(t, y).
+  virtual void add_rhs(double t, std::span<const double> y,
+                       std::span<double> ydot) const = 0;
+  //! J += dF/dy (t, y), exact.
+  virtual void add_jacobian(double t, std::span<const double> y,
+                            JacobianValues& jac) const = 0;
+};
+
+}  // namespace panoptic

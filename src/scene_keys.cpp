@@ -1,0 +1,185 @@
+// The scene schema: every key a scene may hold, its type, default, unit, meaning and
+// allowed range. params/reference.toml is generated from this list (`panoptic reference`)
+// and a unit test keeps the two identical. Physics defaults cite physics-spec sections.
+//
+// NEW_PROCESS: add the keys of a new process here, in a table of its own.
+#include "src/config.hpp"
+
+namespace panoptic {
+namespace {
+
+KeySpec real(std::string key, std::string def, std::string unit, std::string doc,
+             std::optional<double> min = std::nullopt, bool min_excl = false,
+             std::optional<double> max = std::nullopt, bool max_excl = false) {
+  KeySpec k;
+  k.key = std::move(key);
+  k.type = KeyType::kReal;
+  k.default_toml = std::move(def);
+  k.unit = std::move(unit);
+  k.doc = std::move(doc);
+  k.min = min;
+  k.min_exclusive = min_excl;
+  k.max = max;
+  k.max_exclusive = max_excl;
+  return k;
+}
+
+KeySpec positive(std::string key, std::string def, std::string unit, std::string doc) {
+  return real(std::move(key), std::move(def), std::move(unit), std::move(doc), 0.0, true);
+}
+
+KeySpec integer(std::string key, std::string def, std::string doc, double min,
+                double max) {
+  KeySpec k;
+  k.key = std::move(key);
+  k.type = KeyType::kInt;
+  k.default_toml = std::move(def);
+  k.doc = std::move(doc);
+  k.min = min;
+  k.max = max;
+  return k;
+}
+
+KeySpec flag(std::string key, std::string def, std::string doc) {
+  KeySpec k;
+  k.key = std::move(key);
+  k.type = KeyType::kBool;
+  k.default_toml = std::move(def);
+  k.doc = std::move(doc);
+  return k;
+}
+
+KeySpec choice(std::string key, std::string def, std::vector<std::string> choices,
+               std::string doc) {
+  KeySpec k;
+  k.key = std::move(key);
+  k.type = KeyType::kString;
+  k.default_toml = "\"" + def + "\"";
+  k.doc = std::move(doc);
+  k.choices = std::move(choices);
+  return k;
+}
+
+KeySpec text(std::string key, std::string doc) {
+  KeySpec k;
+  k.key = std::move(key);
+  k.type = KeyType::kString;
+  k.default_toml = "\"\"";
+  k.doc = std::move(doc);
+  return k;
+}
+
+KeySpec real_list(std::string key, std::string unit, std::string doc,
+                  std::optional<double> min = std::nullopt) {
+  KeySpec k;
+  k.key = std::move(key);
+  k.type = KeyType::kRealList;
+  k.default_toml = "[]";
+  k.unit = std::move(unit);
+  k.doc = std::move(doc);
+  k.min = min;
+  return k;
+}
+
+std::vector<KeySpec> make_keys() {
+  return {
+      // [meta]: documentation only.
+      text("meta.description", "what this scene is for"),
+      text("meta.reference", "the paper or test this scene reproduces"),
+
+      // [star] spec §1.1
+      positive("star.mass_msun", "1.0", "M_sun", "stellar mass"),
+      positive("star.luminosity_lsun", "1.0", "L_sun",
+               "stellar luminosity (scales T, §1.3)"),
+
+      // [disk] spec §1.2-§1.7
+      choice("disk.model", "powerlaw", {"powerlaw", "lbp"},
+             "gas surface density: powerlaw = MMSN-like (§1.2 A), lbp = Lynden-Bell & "
+             "Pringle similarity profile (§1.2 B)"),
+      positive("disk.sigma_1au", "1700.0", "g cm^-2",
+               "powerlaw: gas surface density at 1 au (MMSN 1700)"),
+      real("disk.p", "1.5", "", "powerlaw: Sigma_g ∝ r^-p", -5.0, false, 5.0, false),
+      positive("disk.m_disk_msun", "0.05", "M_sun", "lbp: total gas mass of the disk"),
+      positive("disk.r_c_au", "60.0", "au", "lbp: characteristic radius r_c"),
+      real("disk.gamma", "1.0", "", "lbp: viscosity exponent gamma (nu ∝ r^gamma)", -2.0,
+           false, 2.0, true),
+      positive("disk.T_1au", "280.0", "K", "temperature at 1 au for L_* = L_sun (§1.3)"),
+      real("disk.q", "0.5", "", "T ∝ r^-q (§1.3)", -2.0, false, 3.0, false),
+      real("disk.T_floor", "10.0", "K", "temperature floor (§1.3)", 0.0, false),
+      positive("disk.mu", "2.34", "", "mean molecular weight (§1.1)"),
+      real("disk.alpha", "1e-3", "", "Shakura-Sunyaev alpha, D_g = alpha c_s H (§1.5)",
+           0.0, true, 1.0, false),
+      positive("disk.sigma_mol", "2e-15", "cm^2", "molecular cross section (§1.6)"),
+      positive("disk.T_sub", "170.0", "K", "water-ice sublimation temperature (§1.7)"),
+
+      // [gas] spec §1.2, §6.1
+      flag(
+          "gas.evolve", "false",
+          "evolve Sigma_g by viscous diffusion (nu = alpha c_s H); the gas velocity then "
+          "enters the dust drift"),
+      choice(
+          "gas.inner_bc", "free_flow", {"free_flow", "zero_torque"},
+          "inner boundary of the evolving gas: free_flow = accretes through r_in as if "
+          "the disk went on; zero_torque = nu Sigma_g r^(1/2) = 0 at r_in"),
+
+      // [dust] initial condition, spec §6.4
+      positive("dust.dust_to_gas", "0.01", "", "initial Sigma_d / Sigma_g (§1.7 Z_out)"),
+      choice(
+          "dust.init", "dust_to_gas", {"dust_to_gas", "gaussian_ring"},
+          "initial Sigma_d: dust_to_gas = dust_to_gas * Sigma_g; gaussian_ring = a thin "
+          "ring diffused to Gaussian width ring_width_au (the exact diffusing-ring "
+          "profile, ~Gaussian for width << radius) on a floor of sigma_floor_rel * "
+          "Sigma_g"),
+      positive("dust.ring_r_au", "30.0", "au", "gaussian_ring: ring centre"),
+      positive("dust.ring_width_au", "2.0", "au",
+               "gaussian_ring: Gaussian width (standard deviation)"),
+      positive("dust.ring_sigma", "1.0", "g cm^-2", "gaussian_ring: peak Sigma_d"),
+      real("dust.sigma_floor_rel", "1e-30", "", "floor of Sigma_d / Sigma_g (§6.4)", 0.0,
+           false, 1e-3, false),
+
+      // [transport] spec §6.1, §6.3
+      flag("transport.drift", "true", "radial drift (advection by v_r, §6.1)"),
+      flag("transport.diffusion", "true",
+           "turbulent diffusion of Sigma_d/Sigma_g (§6.1)"),
+      positive("transport.St", "0.03", "",
+               "prescribed Stokes number at 1 au (until the growth model sets it)"),
+      real("transport.St_slope", "0.0", "", "prescribed St ∝ r^St_slope", -5.0, false,
+           5.0, false),
+
+      // [grid] spec §10.2
+      integer("grid.n_cells", "250", "number of log-spaced radial cells", 4, 1e6),
+      positive("grid.r_in_au", "1.0", "au", "inner edge (open: outflow, booked)"),
+      positive("grid.r_out_au", "300.0", "au", "outer edge (closed: zero flux)"),
+
+      // [solver] CVODE BDF + KLU
+      real("solver.rtol", "1e-6", "", "CVODE relative tolerance", 1e-14, false, 0.1,
+           false),
+      positive(
+          "solver.atol_sigma", "1e-12", "",
+          "absolute tolerance of Sigma_d and Sigma_g, relative to the initial maximum "
+          "of Sigma (so it scales with the scene)"),
+      integer("solver.max_steps", "2000000", "limit on the total number of CVODE steps",
+              1, 1e12),
+      real("solver.max_dt_yr", "0.0", "yr", "largest CVODE step (0 = unlimited)", 0.0,
+           false),
+
+      // [output]
+      positive("output.t_end_yr", "1e6", "yr", "end of the run"),
+      positive("output.t_first_yr", "100.0", "yr",
+               "first snapshot after t = 0 (log-spaced snapshots from here to t_end)"),
+      integer("output.n_snapshots", "41",
+              "log-spaced snapshots after t = 0 (t_first..t_end)", 1, 1e6),
+      real_list("output.times_yr", "yr",
+                "explicit snapshot times; replaces the log spacing when not empty", 0.0),
+      text("output.file", "output file (default: out/<scene name>.h5; -o overrides)"),
+  };
+}
+
+}  // namespace
+
+const std::vector<KeySpec>& scene_keys() {
+  static const std::vector<KeySpec> keys = make_keys();
+  return keys;
+}
+
+}  // namespace panoptic

@@ -1,0 +1,273 @@
+#include "src/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "disk/gas_disk.hpp"
+#include "disk/viscous_gas.hpp"
+#include "physics/dust_transport.hpp"
+#include "physics/stokes_model.hpp"
+#include "src/run_output.hpp"
+#include "src/units.hpp"
+
+namespace panoptic {
+
+using units::kAu;
+using units::kYr;
+
+namespace {
+
+//! exp(-x) I_0(x), the exponentially scaled modified Bessel function (no overflow).
+double i0e(double x) {
+  if (x < 500.0) return std::cyl_bessel_i(0.0, x) * std::exp(-x);
+  // Abramowitz & Stegun 9.7.1, three terms: relative error < 1e-9 for x >= 500.
+  return (1.0 + 1.0 / (8.0 * x) + 9.0 / (128.0 * x * x)) /
+         std::sqrt(2.0 * units::kPi * x);
+}
+
+//! A thin ring at r0 spread by diffusion until its Gaussian width is w, normalised to 1
+//! at r0: the exact axisymmetric diffusing-ring solution
+//! Sigma ∝ exp(-(r^2 + r0^2)/(4Dt)) I_0(r r0/(2Dt)) with 2Dt = w^2, so that
+//! regression tests can compare with the analytic solution at all later times.
+double diffused_ring(double r, double r0, double w) {
+  const double x = (r - r0) / w;
+  return std::exp(-0.5 * x * x) * i0e(r * r0 / (w * w)) / i0e(r0 * r0 / (w * w));
+}
+
+//! A number as a person writes it (%g), for messages.
+std::string num(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+}  // namespace
+
+void validate_scene(const Config& cfg) {
+  const double r_in = cfg.real("grid.r_in_au"), r_out = cfg.real("grid.r_out_au");
+  if (r_in >= r_out)
+    cfg.fail("grid.r_in_au",
+             "must be < grid.r_out_au = " + num(r_out) +
+                 " [au]; make the inner edge smaller than the outer edge");
+  if (r_out / r_in > 1e8)
+    cfg.fail("grid.r_out_au", "r_out/r_in must be <= 1e8; narrow the radial domain");
+  const double t_end = cfg.real("output.t_end_yr");
+  if (cfg.real("output.t_first_yr") > t_end)
+    cfg.fail("output.t_first_yr", "must be <= output.t_end_yr = " + num(t_end) +
+                                      " [yr]; lower it or raise t_end_yr");
+  const auto& times = cfg.reals("output.times_yr");
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    if (times[i] <= 0.0 || times[i] > t_end)
+      cfg.fail("output.times_yr", "every time must be in (0, t_end_yr = " + num(t_end) +
+                                      "] [yr]; remove or fix the entry " + num(times[i]));
+    if (i > 0 && times[i] <= times[i - 1])
+      cfg.fail("output.times_yr", "times must be strictly increasing; sort the list");
+  }
+  if (cfg.str("dust.init") == "gaussian_ring") {
+    const double r0 = cfg.real("dust.ring_r_au");
+    if (r0 <= r_in || r0 >= r_out)
+      cfg.fail("dust.ring_r_au", "the ring centre must lie inside the grid (" +
+                                     num(r_in) + ", " + num(r_out) +
+                                     ") [au]; move the ring or the grid edges");
+  }
+}
+
+Simulation::Simulation(const Config& cfg)
+    : cfg_(cfg),
+      grid_(cfg.real("grid.r_in_au") * kAu, cfg.real("grid.r_out_au") * kAu,
+            static_cast<int>(cfg.integer("grid.n_cells"))),
+      disk_(make_disk(cfg)) {
+  const int n = grid_.n_cells();
+  gas_.static_sigma.resize(n);
+  for (int i = 0; i < n; ++i) gas_.static_sigma[i] = disk_->sigma_g(grid_.r_c(i));
+
+  // Initial dust (spec §6.4: Sigma_d = Z Sigma_g), or a test ring on the floor.
+  const double z = cfg.real("dust.dust_to_gas"), floor = cfg.real("dust.sigma_floor_rel");
+  sigma_d0_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    if (cfg.str("dust.init") == "gaussian_ring") {
+      sigma_d0_[i] = cfg.real("dust.ring_sigma") *
+                         diffused_ring(grid_.r_c(i), cfg.real("dust.ring_r_au") * kAu,
+                                       cfg.real("dust.ring_width_au") * kAu) +
+                     floor * gas_.static_sigma[i];
+    } else {
+      sigma_d0_[i] = z * gas_.static_sigma[i];
+    }
+    dust_mass0_ += sigma_d0_[i] * grid_.area(i);
+  }
+  const double sigma_d_max = *std::max_element(sigma_d0_.begin(), sigma_d0_.end());
+  const double sigma_g_max =
+      *std::max_element(gas_.static_sigma.begin(), gas_.static_sigma.end());
+  sigma_scale_ = sigma_d_max;
+
+  // Prescribed Stokes number (engine scenes; the growth model replaces it).
+  std::vector<double> st(n);
+  for (int i = 0; i < n; ++i)
+    st[i] = cfg.real("transport.St") *
+            std::pow(grid_.r_c(i) / kAu, cfg.real("transport.St_slope"));
+  stokes_ = std::make_unique<PrescribedStokes>(std::move(st));
+
+  // Modules register their variables in this order; the layout is then frozen.
+  layout_ = std::make_shared<StateLayout>(n);
+  std::vector<std::unique_ptr<PhysicsModule>> modules;
+  const ViscousStencil* stencil = nullptr;
+  if (cfg.flag("gas.evolve")) {
+    auto gas = std::make_unique<ViscousGas>(*layout_, *disk_, grid_, sigma_g_max,
+                                            cfg.str("gas.inner_bc") == "zero_torque");
+    gas_.slot = gas->sigma_slot();
+    stencil = &gas->stencil();
+    viscous_ = gas.get();
+    modules.push_back(std::move(gas));
+  }
+  DustTransportOptions topt{cfg.flag("transport.drift"), cfg.flag("transport.diffusion")};
+  auto transport = std::make_unique<DustTransport>(
+      *layout_, grid_, *disk_, gas_, stencil, *stokes_, topt, sigma_d_max, dust_mass0_);
+  transport_ = transport.get();
+  modules.push_back(std::move(transport));
+  layout_->freeze();
+  model_ = std::make_unique<DiskModel>(layout_, std::move(modules));
+}
+
+Simulation::~Simulation() = default;
+
+std::vector<double> Simulation::initial_state() const {
+  const auto& L = *layout_;
+  std::vector<double> y(L.size(), 0.0);
+  for (int i = 0; i < grid_.n_cells(); ++i) {
+    y[L.index(i, transport_->sigma_slot())] = sigma_d0_[i];
+    if (gas_.evolves()) y[L.index(i, gas_.slot)] = gas_.static_sigma[i];
+  }
+  return y;
+}
+
+IntegratorOptions Simulation::integrator_options() const {
+  IntegratorOptions o;
+  o.rtol = cfg_.real("solver.rtol");
+  o.max_steps = cfg_.integer("solver.max_steps");
+  o.max_dt = cfg_.real("solver.max_dt_yr") * kYr;
+  const auto& L = *layout_;
+  const double atol = cfg_.real("solver.atol_sigma");
+  o.atol.resize(L.size());
+  o.constraints.resize(L.size());
+  for (long i = 0; i < L.size(); ++i) {
+    o.atol[i] = atol * L.info_of(i).abs_scale;
+    o.constraints[i] = L.info_of(i).nonnegative ? 1.0 : 0.0;
+  }
+  return o;
+}
+
+std::vector<double> Simulation::output_times() const {
+  std::vector<double> t_yr{0.0};
+  const double t_end = cfg_.real("output.t_end_yr");
+  const auto& listed = cfg_.reals("output.times_yr");
+  if (!listed.empty()) {
+    t_yr.insert(t_yr.end(), listed.begin(), listed.end());
+  } else {
+    const double t0 = cfg_.real("output.t_first_yr");
+    const long m = cfg_.integer("output.n_snapshots");
+    for (long k = 0; k < m; ++k)
+      t_yr.push_back(m == 1 ? t_end
+                            : t0 * std::pow(t_end / t0, double(k) / double(m - 1)));
+  }
+  if (t_yr.back() < t_end) t_yr.push_back(t_end);
+  t_yr.back() = t_end;  // exact end time
+  std::vector<double> t;
+  for (double x : t_yr)
+    if (t.empty() || x * kYr > t.back()) t.push_back(x * kYr);
+  return t;
+}
+
+void Simulation::prepare_output(RunOutput& out) const {
+  const int n = grid_.n_cells();
+  std::vector<double> r_c(n), r_f(n + 1), T(n), cs(n), om(n), hg(n), alpha(n);
+  for (int i = 0; i <= n; ++i) r_f[i] = grid_.r_f(i) / kAu;
+  for (int i = 0; i < n; ++i) {
+    const double r = grid_.r_c(i);
+    r_c[i] = r / kAu;
+    T[i] = disk_->temperature(r);
+    cs[i] = disk_->c_s(r);
+    om[i] = disk_->omega_k(r);
+    hg[i] = disk_->h_g(r);
+    alpha[i] = disk_->alpha();
+  }
+  out.write_static("grid", "r_c", r_c, "au",
+                   "cell centres (geometric mean of the faces)");
+  out.write_static("grid", "r_f", r_f, "au", "cell faces, log-spaced");
+  out.write_static("grid", "area", grid_.areas(), "cm^2", "annulus area of each cell");
+  out.write_static("disk", "T", T, "K", "midplane temperature");
+  out.write_static("disk", "c_s", cs, "cm s^-1", "isothermal sound speed");
+  out.write_static("disk", "omega_k", om, "s^-1", "Keplerian angular frequency");
+  out.write_static("disk", "h_g", hg, "cm", "gas pressure scale height");
+  out.write_static("disk", "alpha", alpha, "", "turbulence parameter");
+  out.write_static("disk", "eta", eta_centres(*disk_, grid_, gas_.static_sigma), "",
+                   "pressure-gradient parameter of the initial gas (spec §1.4)");
+  out.set_group_attr("disk", "r_snow_au", disk_->r_snow() / kAu);
+  out.add_field("sigma_d", n, "g cm^-2", "dust surface density");
+  out.add_field("sigma_g", n, "g cm^-2", "gas surface density");
+  out.add_field("St", n, "", "Stokes number of the dust");
+  out.add_field("v_r", n + 1, "cm s^-1", "dust radial velocity on the faces");
+  out.add_field("mdot_d", n + 1, "g s^-1",
+                "dust mass flow through the faces, positive outward");
+  out.add_field("m_dust", 0, "g", "dust mass on the grid");
+  out.add_field("m_out_inner", 0, "g", "cumulative dust mass that left through r_in");
+  if (gas_.evolves())
+    out.add_field("m_out_gas", 0, "g", "cumulative gas mass accreted through r_in");
+}
+
+std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
+    std::span<const double> y) const {
+  const int n = grid_.n_cells();
+  const auto& L = *layout_;
+  std::map<std::string, std::vector<double>> f;
+  std::vector<double> sd(n), sg(n), st(n);
+  for (int i = 0; i < n; ++i) {
+    const double* yc = &y[L.index(i, 0)];
+    sd[i] = yc[transport_->sigma_slot()];
+    sg[i] = gas_.sigma(i, yc);
+    st[i] = stokes_->St(i, yc);
+  }
+  f["sigma_d"] = std::move(sd);
+  f["sigma_g"] = std::move(sg);
+  f["St"] = std::move(st);
+  f["v_r"] = transport_->face_velocity(y);
+  f["mdot_d"] = transport_->mass_flow(y);
+  f["m_dust"] = {dust_mass_on_grid(y)};
+  f["m_out_inner"] = {dust_mass_out(y)};
+  if (gas_.evolves())
+    f["m_out_gas"] = {y[L.global_index(viscous_->m_out_slot())] * viscous_->mass_unit()};
+  return f;
+}
+
+double Simulation::dust_mass_on_grid(std::span<const double> y) const {
+  double m = 0.0;
+  for (int i = 0; i < grid_.n_cells(); ++i)
+    m += y[layout_->index(i, transport_->sigma_slot())] * grid_.area(i);
+  return m;
+}
+
+double Simulation::dust_mass_out(std::span<const double> y) const {
+  return y[layout_->global_index(transport_->m_out_slot())] * transport_->mass_unit();
+}
+
+std::string Simulation::summary() const {
+  std::ostringstream s;
+  const auto& L = *layout_;
+  s << "grid: " << grid_.n_cells() << " cells, " << grid_.r_f(0) / kAu << " - "
+    << grid_.r_f(grid_.n_cells()) / kAu << " au (dr/r = " << std::exp(grid_.dlnr()) - 1
+    << ")\n";
+  s << "gas disk: " << disk_->name()
+    << (gas_.evolves() ? ", viscously evolving" : ", static") << "; snow line at "
+    << disk_->r_snow() / kAu << " au\n";
+  s << "state: " << L.size() << " variables; per cell:";
+  for (int k = 0; k < L.n_cell_vars(); ++k) s << " " << L.cell_var(k).name;
+  s << "; global:";
+  for (int k = 0; k < L.n_global_vars(); ++k) s << " " << L.global_var(k).name;
+  s << "\nmodules:";
+  for (const auto& m : model_->modules()) s << " " << m->name();
+  s << "\nJacobian: " << model_->pattern().nnz() << " structural non-zeros\n";
+  s << "initial dust mass: " << dust_mass0_ / units::kMearth << " M_earth\n";
+  return s.str();
+}
+
+}  // namespace panoptic

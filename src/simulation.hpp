@@ -1,0 +1,73 @@
+#pragma once
+//! A scene assembled into something CVODE can integrate: grid, gas disk, the physics
+//! modules the scene turns on, the state layout they register, the initial state, the
+//! tolerances and the output times. This is the factory: the only place (with main.cpp)
+//! that names concrete modules.
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "disk/gas_column.hpp"
+#include "src/config.hpp"
+#include "src/cvode_integrator.hpp"
+#include "src/disk_model.hpp"
+#include "src/grid.hpp"
+
+namespace panoptic {
+
+class GasDisk;
+class RunOutput;
+class StokesModel;
+class DustTransport;
+class ViscousGas;
+
+//! Cross-key checks of a loaded scene (r_in < r_out, output times, ...): throws
+//! ConfigError naming the key. Call before anything is allocated or written.
+void validate_scene(const Config& cfg);
+
+class Simulation {
+ public:
+  explicit Simulation(const Config& cfg);
+  ~Simulation();
+
+  const Config& config() const { return cfg_; }
+  const Grid& grid() const { return grid_; }
+  const GasDisk& disk() const { return *disk_; }
+  DiskModel& model() { return *model_; }
+  const DiskModel& model() const { return *model_; }
+  const DustTransport& transport() const { return *transport_; }
+
+  std::vector<double> initial_state() const;
+  IntegratorOptions integrator_options() const;
+  //! Snapshot times [s], t = 0 first, t_end last.
+  std::vector<double> output_times() const;
+
+  //! Writes /grid, /disk and declares the snapshot fields.
+  void prepare_output(RunOutput& out) const;
+  //! Every snapshot field at state y (cgs, as declared in prepare_output).
+  std::map<std::string, std::vector<double>> snapshot_fields(
+      std::span<const double> y) const;
+
+  double dust_mass_on_grid(std::span<const double> y) const;  //!< [g]
+  double dust_mass_out(std::span<const double> y) const;      //!< through r_in [g]
+  double initial_dust_mass() const { return dust_mass0_; }    //!< [g]
+  //! One-paragraph summary for `panoptic check` and the run header.
+  std::string summary() const;
+
+ private:
+  Config cfg_;
+  Grid grid_;
+  std::unique_ptr<GasDisk> disk_;
+  GasColumn gas_;
+  std::unique_ptr<StokesModel> stokes_;
+  std::shared_ptr<StateLayout> layout_;
+  const DustTransport* transport_ = nullptr;
+  const ViscousGas* viscous_ = nullptr;
+  std::unique_ptr<DiskModel> model_;
+  std::vector<double> sigma_d0_;
+  double sigma_scale_ = 1.0, dust_mass0_ = 0.0;
+};
+
+}  // namespace panoptic

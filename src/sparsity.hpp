@@ -1,0 +1,61 @@
+#pragma once
+//! Sparsity pattern of the Jacobian: the union of the entries every module declares, plus
+//! the full diagonal (CVODE forms I - gamma J in place and must not insert entries).
+//! Built once in compressed-sparse-column form, with sunindextype indices for
+//! SUNSparseMatrix.
+#include <sundials/sundials_types.h>
+
+#include <set>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace panoptic {
+
+class PatternBuilder {
+ public:
+  explicit PatternBuilder(long n) : n_(n) {}
+  void add(long row, long col) { entries_.emplace(col, row); }
+  long size() const { return n_; }
+
+ private:
+  friend class SparsityPattern;
+  long n_;
+  std::set<std::pair<long, long>> entries_;  // (col, row): sorted column-major
+};
+
+class SparsityPattern {
+ public:
+  SparsityPattern() = default;
+  explicit SparsityPattern(const PatternBuilder& builder);
+
+  long size() const { return n_; }
+  long nnz() const { return static_cast<long>(row_index_.size()); }
+  //! Position of (row, col) in the value array, or -1 when it is not in the pattern.
+  long position(long row, long col) const;
+  bool contains(long row, long col) const { return position(row, col) >= 0; }
+  //! Writes the CSC index arrays (what CVODE zeroes in the matrix before each call).
+  void copy_structure_to(sunindextype* colptrs, sunindextype* rowvals) const;
+  std::span<const sunindextype> col_ptr() const { return col_ptr_; }
+  std::span<const sunindextype> row_index() const { return row_index_; }
+
+ private:
+  long n_ = 0;
+  std::vector<sunindextype> col_ptr_, row_index_;
+};
+
+//! The value array of a Jacobian in the pattern: modules add their dF/dy into it.
+class JacobianValues {
+ public:
+  JacobianValues(const SparsityPattern& pattern, std::span<double> values)
+      : pattern_(pattern), values_(values) {}
+  //! J(row, col) += v. The entry must have been declared; a miss is a programming error.
+  void add(long row, long col, double v);
+  const SparsityPattern& pattern() const { return pattern_; }
+
+ private:
+  const SparsityPattern& pattern_;
+  std::span<double> values_;
+};
+
+}  // namespace panoptic

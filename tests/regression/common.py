@@ -1,0 +1,62 @@
+"""Shared helpers of the regression tests: run the panoptic executable on a scene with
+overrides, read its output with postprocess.reader, and report checks.
+
+Every test script is called by CTest as
+    /usr/bin/python3 tests/regression/test_X.py --exe build/panoptic --workdir DIR
+runs panoptic, compares with postprocess.analytic, prints the numbers it measured and
+exits 1 when a check fails."""
+import argparse
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from postprocess.reader import load_run  # noqa: E402
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def parse_args():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--exe", required=True, help="the panoptic executable")
+    ap.add_argument("--workdir", required=True, help="where run outputs go")
+    args = ap.parse_args()
+    os.makedirs(args.workdir, exist_ok=True)
+    return args
+
+
+def run(exe, scene, out, sets=(), expect=0):
+    """Runs `panoptic run scene --set ... -o out --overwrite`; returns the CompletedProcess."""
+    cmd = [exe, "run", os.path.join(REPO, scene), "-o", out, "--overwrite"]
+    for s in sets:
+        cmd += ["--set", s]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if expect is not None and p.returncode != expect:
+        print(" ".join(cmd))
+        print(p.stdout)
+        print(p.stderr)
+        raise SystemExit(f"panoptic exited with {p.returncode}, expected {expect}")
+    return p
+
+
+class Checks:
+    """Collects named pass/fail checks and prints 'N passed, M failed' at the end."""
+
+    def __init__(self):
+        self.passed = 0
+        self.failed = 0
+
+    def check(self, ok, what):
+        print(("ok    " if ok else "FAIL  ") + what)
+        if ok:
+            self.passed += 1
+        else:
+            self.failed += 1
+
+    def finish(self):
+        print(f"{self.passed} passed, {self.failed} failed")
+        sys.exit(1 if self.failed else 0)
+
+
+__all__ = ["parse_args", "run", "Checks", "load_run", "REPO"]

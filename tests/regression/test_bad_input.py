@@ -1,0 +1,66 @@
+"""Each class of bad input gives one clear message (file:line, key, value, constraint, fix),
+exit code 2, and no output file; an unwritable output gives exit code 4; --help and
+--version exit 0."""
+import os
+import subprocess
+
+from common import REPO, Checks, parse_args
+
+GOOD = open(os.path.join(REPO, "params/fiducial.toml")).read()
+
+# (label, scene text or None for the good scene, extra CLI args, strings the message must hold)
+CASES = [
+    ("unknown key", GOOD.replace("n_cells = 250", "n_cell = 250"),
+     [], ["n_cell", ":", "grid.n_cells"]),
+    ("wrong type", GOOD.replace("n_cells = 250", 'n_cells = "many"'),
+     [], ["grid.n_cells", "many"]),
+    ("out of range", GOOD.replace("r_in_au = 1.0 ", "r_in_au = -1.0 "),
+     [], ["grid.r_in_au", "-1", "> 0"]),
+    ("inconsistent r_in >= r_out", GOOD.replace("r_in_au = 1.0 ", "r_in_au = 500.0 "),
+     [], ["grid.r_in_au", "500", "r_out"]),
+    ("unknown choice", GOOD.replace('model = "powerlaw"', 'model = "mmsn2"'),
+     [], ["disk.model", "mmsn2", "powerlaw", "lbp"]),
+    ("malformed TOML", GOOD.replace("[grid]", "[grid"),
+     [], [":"]),
+    ("binary garbage", "\x00\xff\xfe[[[\x01=\n", [], ["toml"]),
+    ("bad --set key", None, ["--set", "grid.n_celz=10"], ["grid.n_celz", "--set"]),
+    ("bad --set value", None, ["--set", "solver.rtol=-1"], ["solver.rtol", "-1"]),
+    ("--set without =", None, ["--set", "solver.rtol"], ["solver.rtol"]),
+    ("unknown CLI option", None, ["--frobnicate"], ["frobnicate"]),
+]
+
+
+def main():
+    args = parse_args()
+    c = Checks()
+    for k, (label, text, extra, needles) in enumerate(CASES):
+        scene = os.path.join(args.workdir, f"bad_{k}.toml")
+        data = GOOD if text is None else text
+        with open(scene, "wb") as f:  # the garbage case is not UTF-8 on purpose
+            f.write(data.encode("latin-1") if label == "binary garbage" else data.encode())
+        out = os.path.join(args.workdir, f"bad_{k}.h5")
+        if os.path.exists(out):
+            os.remove(out)
+        p = subprocess.run([args.exe, "run", scene, "-o", out] + extra,
+                           capture_output=True, text=True, errors="replace")
+        msg = (p.stderr + p.stdout).strip()
+        lower = msg.lower()
+        missing = [n for n in needles if n.lower() not in lower]
+        print(f"[{label}] exit {p.returncode}: {msg.splitlines()[0] if msg else '(no message)'}")
+        c.check(p.returncode == 2, f"{label}: exit code 2")
+        c.check(not missing, f"{label}: message names {needles}" + (f" (missing {missing})" if missing else ""))
+        c.check(not os.path.exists(out), f"{label}: no output file left behind")
+
+    # unwritable output location -> I/O error, exit 4
+    p = subprocess.run([args.exe, "run", os.path.join(REPO, "params/fiducial.toml"),
+                        "-o", "/proc/panoptic/x.h5"], capture_output=True, text=True)
+    print(f"[unwritable output] exit {p.returncode}: {p.stderr.strip()}")
+    c.check(p.returncode == 4, "unwritable output: exit code 4")
+    for flag in ["--help", "--version"]:
+        p = subprocess.run([args.exe, flag], capture_output=True, text=True)
+        c.check(p.returncode == 0 and p.stdout.strip() != "", f"{flag}: exit 0 with text")
+    c.finish()
+
+
+if __name__ == "__main__":
+    main()
