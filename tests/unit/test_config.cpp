@@ -1,0 +1,634 @@
+// The scene loader: every class of bad input gives a ConfigError that names file:line,
+// the key, the value, the constraint and a fix; good input gives the schema values with
+// defaults filled in; resolved_toml() and reference_toml() read back to the same scene.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <csignal>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "src/config.hpp"
+#include "src/toml_guard.hpp"
+
+namespace panoptic {
+namespace {
+
+using Overrides = std::vector<std::string>;
+
+Config load(std::string_view text, const Overrides& overrides = {}) {
+  return load_scene_text(text, "scene.toml", overrides);
+}
+
+// The message of the ConfigError that loading `text` throws ("" and a failure if none).
+std::string error_of(std::string_view text, const Overrides& overrides = {}) {
+  try {
+    load(text, overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not a ConfigError: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return "";
+}
+
+// Checks that `message` contains every one of `parts`.
+void expect_parts(const std::string& message, const std::vector<std::string>& parts) {
+  for (const std::string& part : parts) {
+    EXPECT_NE(message.find(part), std::string::npos) << "missing \"" << part << "\" in:\n"
+                                                     << message;
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Good input
+
+TEST(Config, EmptySceneHoldsEveryDefault) {
+  const Config c = load("");
+  EXPECT_EQ(c.values_.size(), scene_keys().size());
+  for (const KeySpec& spec : scene_keys()) {
+    EXPECT_TRUE(c.values_.count(spec.key)) << spec.key;
+    EXPECT_FALSE(c.user_set(spec.key)) << spec.key;
+    EXPECT_EQ(c.where(spec.key), "default") << spec.key;
+  }
+  EXPECT_EQ(c.real("grid.r_in_au"), 1.0);
+  EXPECT_EQ(c.real("disk.alpha"), 1e-3);
+  EXPECT_EQ(c.integer("grid.n_cells"), 250);
+  EXPECT_EQ(c.integer("solver.max_steps"), 2000000);
+  EXPECT_EQ(c.str("disk.model"), "powerlaw");
+  EXPECT_EQ(c.str("meta.description"), "");
+  EXPECT_TRUE(c.flag("transport.drift"));
+  EXPECT_FALSE(c.flag("gas.evolve"));
+  EXPECT_TRUE(c.reals("output.times_yr").empty());
+  EXPECT_EQ(c.file(), "scene.toml");
+}
+
+TEST(Config, FileValuesAreUserSetWithTheirPosition) {
+  const Config c = load(
+      "# a scene\n"
+      "[grid]\n"
+      "r_in_au = 2.5\n"
+      "  n_cells = 100\n"
+      "[disk]\n"
+      "model = \"lbp\"\n"
+      "[output]\n"
+      "times_yr = [1e3, 2e4]\n");
+  EXPECT_EQ(c.real("grid.r_in_au"), 2.5);
+  EXPECT_EQ(c.integer("grid.n_cells"), 100);
+  EXPECT_EQ(c.str("disk.model"), "lbp");
+  EXPECT_EQ(c.reals("output.times_yr"), (std::vector<double>{1e3, 2e4}));
+  EXPECT_TRUE(c.user_set("grid.r_in_au"));
+  EXPECT_EQ(c.where("grid.r_in_au"), "scene.toml:3:1");
+  EXPECT_EQ(c.where("grid.n_cells"), "scene.toml:4:3");
+  EXPECT_EQ(c.where("output.times_yr"), "scene.toml:8:1");
+  EXPECT_FALSE(c.user_set("grid.r_out_au"));
+  EXPECT_EQ(c.real("grid.r_out_au"), 300.0);
+}
+
+TEST(Config, IntegerLiteralIsAcceptedForAReal) {
+  const Config c = load("[grid]\nr_in_au = 2\n[output]\ntimes_yr = [1, 2.5, 300]\n");
+  EXPECT_EQ(c.real("grid.r_in_au"), 2.0);
+  EXPECT_EQ(c.reals("output.times_yr"), (std::vector<double>{1.0, 2.5, 300.0}));
+}
+
+TEST(Config, DottedKeysAndInlineTablesAreTheSameKeys) {
+  const Config c = load("grid.r_in_au = 3.0\nstar = { mass_msun = 0.5 }\n");
+  EXPECT_EQ(c.real("grid.r_in_au"), 3.0);
+  EXPECT_EQ(c.real("star.mass_msun"), 0.5);
+  EXPECT_TRUE(c.user_set("star.mass_msun"));
+}
+
+TEST(Config, InclusiveBoundsAcceptTheBound) {
+  const Config c = load(
+      "[disk]\nT_floor = 0\nalpha = 1\np = -5\ngamma = 1.999\n"
+      "[grid]\nn_cells = 4\n");
+  EXPECT_EQ(c.real("disk.T_floor"), 0.0);
+  EXPECT_EQ(c.real("disk.alpha"), 1.0);
+  EXPECT_EQ(c.real("disk.p"), -5.0);
+  EXPECT_EQ(c.integer("grid.n_cells"), 4);
+}
+
+TEST(Config, AccessorOfTheWrongTypeIsAnInternalError) {
+  const Config c = load("");
+  EXPECT_THROW(c.integer("grid.r_in_au"), Error);
+  EXPECT_THROW(c.real("grid.no_such_key"), Error);
+  try {
+    c.real("grid.n_cells");
+  } catch (const ConfigError&) {
+    ADD_FAILURE() << "a programming error is not a ConfigError";
+  } catch (const Error&) {
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad keys
+
+TEST(Config, UnknownKeySuggestsTheNearestKey) {
+  const std::string m = error_of("[grid]\nn_cells = 100\nr_in = 2.0\n");
+  expect_parts(m, {"scene.toml:3:1:", "grid.r_in = 2.0", "unknown key",
+                   "did you mean grid.r_in_au?"});
+}
+
+TEST(Config, UnknownKeyIgnoresCase) {
+  expect_parts(error_of("[disk]\nt_1au = 300.0\n"),
+               {"scene.toml:2:", "disk.t_1au = 300.0", "did you mean disk.T_1au?"});
+}
+
+TEST(Config, KeyInTheWrongTableSuggestsTheRightTable) {
+  expect_parts(error_of("[grid]\nmass_msun = 2.0\n"),
+               {"scene.toml:2:", "grid.mass_msun", "did you mean star.mass_msun?"});
+}
+
+TEST(Config, UnknownKeyFarFromAnyKeyListsTheTable) {
+  expect_parts(error_of("[grid]\nzzzzzzzzzzzz = 1\n"),
+               {"scene.toml:2:", "grid.zzzzzzzzzzzz = 1", "unknown key",
+                "n_cells, r_in_au, r_out_au"});
+}
+
+TEST(Config, UnknownTable) {
+  expect_parts(error_of("[gird]\nn_cells = 3\n"),
+               {"scene.toml:1:", "[gird]", "unknown table", "did you mean [grid]?",
+                "meta, star, disk"});
+  expect_parts(error_of("\n[physics]\n"),
+               {"scene.toml:2:", "[physics]", "unknown table"});
+}
+
+TEST(Config, SubTableIsUnknown) {
+  expect_parts(error_of("[grid.sub]\nx = 1\n"),
+               {"scene.toml:1:", "grid.sub", "two levels"});
+}
+
+TEST(Config, ArrayOfTablesIsRefused) {
+  expect_parts(error_of("[[grid]]\nn_cells = 10\n"),
+               {"scene.toml:1:", "[[grid]]", "write [grid]"});
+}
+
+TEST(Config, KeyOutsideAnyTable) {
+  expect_parts(error_of("r_in_au = 2.0\n"),
+               {"scene.toml:1:1:", "r_in_au = 2.0", "outside any table",
+                "did you mean grid.r_in_au?"});
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad values
+
+TEST(Config, StringWhereANumberIsExpected) {
+  expect_parts(error_of("[grid]\nr_in_au = \"one\"\n"),
+               {"scene.toml:2:1:", "grid.r_in_au = \"one\"", "must be a real number [au]",
+                "not a string", "set grid.r_in_au to a real number > 0 (unit: au)"});
+}
+
+TEST(Config, RealWhereAnIntegerIsExpected) {
+  expect_parts(error_of("[grid]\nn_cells = 250.5\n"),
+               {"scene.toml:2:", "grid.n_cells = 250.5", "must be an integer",
+                "not a real number", "set grid.n_cells to an integer >= 4"});
+  expect_parts(error_of("[grid]\nn_cells = 1e3\n"),
+               {"scene.toml:2:", "grid.n_cells = 1e3", "must be an integer",
+                "grid.n_cells = 1000"});
+}
+
+TEST(Config, WrongTypeOfFlagStringAndList) {
+  expect_parts(error_of("[gas]\nevolve = \"true\"\n"),
+               {"scene.toml:2:", "gas.evolve = \"true\"", "must be true or false",
+                "without quotes"});
+  expect_parts(
+      error_of("[gas]\nevolve = 1\n"),
+      {"scene.toml:2:", "gas.evolve = 1", "must be true or false", "not an integer"});
+  expect_parts(error_of("[disk]\nmodel = 3\n"),
+               {"scene.toml:2:", "disk.model = 3", "must be a string"});
+  expect_parts(error_of("[output]\ntimes_yr = 5\n"),
+               {"scene.toml:2:", "output.times_yr = 5", "must be a list",
+                "output.times_yr = [5.0]"});
+  expect_parts(
+      error_of("[output]\ntimes_yr = [1, \"2\"]\n"),
+      {"scene.toml:2:", "output.times_yr = [1, \"2\"]", "element 2 is a string"});
+  expect_parts(error_of("[grid]\nr_in_au = 1979-05-27\n"),
+               {"scene.toml:2:", "grid.r_in_au = 1979-05-27", "not a date"});
+  expect_parts(error_of("[grid]\nr_in_au = { x = 1 }\n"),
+               {"scene.toml:2:", "grid.r_in_au = { x = 1 }", "not a table"});
+}
+
+TEST(Config, ExclusiveMinimum) {
+  expect_parts(error_of("[grid]\nr_in_au = -1\n"),
+               {"scene.toml:2:1:", "grid.r_in_au = -1", "must be > 0 [au]",
+                "set grid.r_in_au to"});
+  expect_parts(error_of("[grid]\nr_in_au = 0.0\n"),
+               {"scene.toml:2:", "grid.r_in_au = 0.0", "must be > 0 [au]"});
+}
+
+TEST(Config, InclusiveMinimum) {
+  expect_parts(error_of("[disk]\nT_floor = -1e-300\n"),
+               {"scene.toml:2:", "disk.T_floor = -1e-300", "must be >= 0 [K]"});
+  expect_parts(error_of("[grid]\nn_cells = 3\n"),
+               {"scene.toml:2:", "grid.n_cells = 3", "must be >= 4 and <= 1000000"});
+}
+
+TEST(Config, ExclusiveAndInclusiveMaximum) {
+  expect_parts(error_of("[disk]\ngamma = 2\n"),
+               {"scene.toml:2:", "disk.gamma = 2", "must be >= -2 and < 2"});
+  expect_parts(error_of("[disk]\nalpha = 1.5\n"),
+               {"scene.toml:2:", "disk.alpha = 1.5", "must be > 0 and <= 1"});
+  expect_parts(error_of("[solver]\nrtol = 0.2\n"),
+               {"scene.toml:2:", "solver.rtol = 0.2", "<= 0.1"});
+}
+
+TEST(Config, ListElementsAreRangeChecked) {
+  expect_parts(error_of("[output]\ntimes_yr = [1,\n  -2]\n"),
+               {"scene.toml:2:", "output.times_yr = [1, -2]", "element 2 (-2)",
+                "must be >= 0 [yr]"});
+}
+
+TEST(Config, InfAndNanAreRefused) {
+  expect_parts(error_of("[grid]\nr_out_au = inf\n"),
+               {"scene.toml:2:", "grid.r_out_au = inf", "finite"});
+  expect_parts(error_of("[disk]\np = nan\n"),
+               {"scene.toml:2:", "disk.p = nan", "finite"});
+  expect_parts(error_of("[output]\ntimes_yr = [1, +inf]\n"),
+               {"scene.toml:2:", "element 2", "finite"});
+}
+
+TEST(Config, StringNotInChoicesListsTheChoices) {
+  expect_parts(error_of("[disk]\nmodel = \"lbp2\"\n"),
+               {"scene.toml:2:1:", "disk.model = \"lbp2\"",
+                "unknown choice; choose one of: powerlaw, lbp"});
+}
+
+TEST(Config, EveryProblemIsReportedInFileOrder) {
+  const std::string m =
+      error_of("[grid]\nr_out_au = -3\n[disk]\nmodel = \"x\"\n[grid2]\n");
+  const size_t a = m.find("scene.toml:2:");
+  const size_t b = m.find("scene.toml:4:");
+  const size_t c = m.find("scene.toml:5:");
+  ASSERT_NE(a, std::string::npos) << m;
+  ASSERT_NE(b, std::string::npos) << m;
+  ASSERT_NE(c, std::string::npos) << m;
+  EXPECT_LT(a, b);
+  EXPECT_LT(b, c);
+}
+
+TEST(Config, LongValuesAreCutInMessages) {
+  const std::string m =
+      error_of("[grid]\nr_in_au = \"" + std::string(5000, 'x') + "\"\n");
+  expect_parts(m, {"scene.toml:2:", "grid.r_in_au = \"xxx", "..."});
+  EXPECT_LT(m.size(), 1000u);
+}
+
+// ---------------------------------------------------------------------------------------
+// Malformed files
+
+TEST(Config, SyntaxErrorNamesLineAndColumn) {
+  expect_parts(error_of("[grid\n"), {"scene.toml:1:", "TOML syntax error"});
+  expect_parts(error_of("[grid]\nr_in_au = = 1\n"),
+               {"scene.toml:2:11:", "TOML syntax error"});
+  expect_parts(error_of("[grid]\nr_in_au = 1\nr_in_au = 2\n"),
+               {"scene.toml:3:", "TOML syntax error", "r_in_au"});
+  expect_parts(error_of("[meta]\ndescription = \"unterminated\n"),
+               {"scene.toml:2:", "TOML syntax error"});
+}
+
+TEST(Config, NulByteIsRefused) {
+  const std::string text = std::string("[grid]\nr_in_au = 1") + '\0' + "\n";
+  expect_parts(error_of(text), {"scene.toml:2:12:", "NUL byte", "offset 18"});
+}
+
+TEST(Config, InvalidUtf8IsRefused) {
+  expect_parts(error_of("[meta]\ndescription = \"\xff\"\n"),
+               {"scene.toml:2:16:", "not valid UTF-8", "0xFF", "offset 22"});
+  // An overlong encoding of '/', a UTF-16 surrogate and a truncated sequence.
+  expect_parts(error_of("# \xc0\xaf\n"), {"scene.toml:1:", "not valid UTF-8"});
+  expect_parts(error_of("# \xed\xa0\x80\n"), {"scene.toml:1:", "not valid UTF-8"});
+  expect_parts(error_of("# \xe2\x82"), {"scene.toml:1:", "not valid UTF-8"});
+  // Valid multi-byte text is fine.
+  EXPECT_EQ(load("[meta]\ndescription = \"Σ_g ∝ r^-p, 🌍\"\n").str("meta.description"),
+            "Σ_g ∝ r^-p, 🌍");
+}
+
+TEST(Config, TooLargeFileIsRefused) {
+  const std::string text(17u << 20, '#');
+  expect_parts(error_of(text), {"scene.toml", "too large"});
+}
+
+// ---------------------------------------------------------------------------------------
+// --set overrides
+
+TEST(Config, OverrideTakesPrecedenceOverTheFile) {
+  const Config c = load("[grid]\nr_in_au = 2.0\n",
+                        {"grid.r_in_au=3", "grid.n_cells = 500", "grid.r_in_au=4.5"});
+  EXPECT_EQ(c.real("grid.r_in_au"), 4.5);  // the last --set wins
+  EXPECT_EQ(c.integer("grid.n_cells"), 500);
+  EXPECT_EQ(c.where("grid.r_in_au"), "--set");
+  EXPECT_TRUE(c.user_set("grid.r_in_au"));
+  EXPECT_TRUE(c.user_set("grid.n_cells"));
+}
+
+TEST(Config, OverrideValuesAreTomlLiteralsOrBareStrings) {
+  const Config c =
+      load("", {"meta.description=hello world", "disk.model=lbp",
+                "meta.reference=\"quoted # not a comment\"", "output.times_yr=[1, 2e5]",
+                "gas.evolve=true", "output.file=out/x=1.h5", "disk.p=-1"});
+  EXPECT_EQ(c.str("meta.description"), "hello world");
+  EXPECT_EQ(c.str("disk.model"), "lbp");
+  EXPECT_EQ(c.str("meta.reference"), "quoted # not a comment");
+  EXPECT_EQ(c.reals("output.times_yr"), (std::vector<double>{1.0, 2e5}));
+  EXPECT_TRUE(c.flag("gas.evolve"));
+  EXPECT_EQ(c.str("output.file"), "out/x=1.h5");
+  EXPECT_EQ(c.real("disk.p"), -1.0);
+}
+
+TEST(Config, OverrideOfAnUnknownKey) {
+  expect_parts(error_of("", {"grid.r_inn=2"}),
+               {"--set", "grid.r_inn = 2", "unknown key", "did you mean grid.r_in_au?"});
+  expect_parts(error_of("", {"nogrid.x=2"}), {"--set", "nogrid.x = 2", "unknown key"});
+}
+
+TEST(Config, OverrideWithABadValue) {
+  expect_parts(error_of("", {"grid.n_cells=many"}),
+               {"--set", "grid.n_cells = many", "must be an integer", "not a string"});
+  expect_parts(error_of("", {"grid.r_in_au=-1"}),
+               {"--set", "grid.r_in_au = -1", "must be > 0 [au]"});
+  expect_parts(error_of("", {"disk.model=lbp2"}),
+               {"--set", "disk.model = lbp2", "choose one of: powerlaw, lbp"});
+  expect_parts(error_of("", {"grid.r_in_au="}), {"--set", "grid.r_in_au", "must be"});
+  expect_parts(error_of("", {"meta.description=\xff"}), {"--set", "not valid UTF-8"});
+}
+
+TEST(Config, OverrideWithoutEquals) {
+  expect_parts(error_of("", {"grid.r_in_au"}),
+               {"--set", "grid.r_in_au", "missing '='", "table.key=value"});
+  expect_parts(error_of("", {"=3"}), {"--set", "missing key before '='"});
+}
+
+TEST(Config, OverrideCannotSmuggleOtherKeys) {
+  // A newline would start another TOML line: the value is taken as one bare string.
+  const Config c = load("", {"meta.description=x\n[grid]\nr_in_au = 5"});
+  EXPECT_EQ(c.str("meta.description"), "x\n[grid]\nr_in_au = 5");
+  EXPECT_EQ(c.real("grid.r_in_au"), 1.0);
+  expect_parts(error_of("", {"grid.r_in_au=2\n[grid]\nn_cells = 5"}),
+               {"--set", "must be a real number"});
+}
+
+// ---------------------------------------------------------------------------------------
+// fail(), resolved_toml(), reference_toml()
+
+TEST(Config, FailNamesWhereKeyAndValue) {
+  const Config c = load("[grid]\nr_in_au = 400.0\n");
+  try {
+    c.fail("grid.r_in_au",
+           "must be < grid.r_out_au (300 au); lower it or raise r_out_au");
+    ADD_FAILURE() << "fail() returned";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "scene.toml:2:1: grid.r_in_au = 400.0: must be < grid.r_out_au (300 au); "
+              "lower it or raise r_out_au");
+  }
+  try {
+    c.fail("grid.r_out_au", "too small");
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "default: grid.r_out_au = 300.0: too small");
+  }
+}
+
+void expect_same_values(const Config& a, const Config& b) {
+  ASSERT_EQ(a.values_.size(), b.values_.size());
+  for (const auto& [key, value] : a.values_) {
+    const auto it = b.values_.find(key);
+    ASSERT_NE(it, b.values_.end()) << key;
+    EXPECT_TRUE(value == it->second) << key;
+  }
+}
+
+// The line of `text` that starts with `prefix` ("" if none).
+std::string line_of(const std::string& text, const std::string& prefix) {
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.rfind(prefix, 0) == 0) return line;
+  }
+  return "";
+}
+
+TEST(Config, ResolvedTomlReadsBackToTheSameScene) {
+  const Config c = load(
+      "[meta]\n"
+      "description = \"quote \\\" backslash \\\\ tab \\t newline \\n bell \\u0007 del "
+      "\\u007F é ∝ 🌍\"\n"
+      "reference = '''C:\\path'''\n"
+      "[disk]\n"
+      "p = 0.1\nq = 0.30000000000000004\nalpha = 1e-300\nsigma_mol = 5e-324\n"
+      "sigma_1au = 6.02214076e23\nT_1au = 3\n"
+      "[grid]\nn_cells = 1000000\n"
+      "[output]\ntimes_yr = [0, 1, 0.1, 1e-7, 123456789012345678, "
+      "1.7976931348623157e308]\n",
+      {"disk.gamma=-0.0"});
+  const std::string resolved = c.resolved_toml();
+  const Config back = load_scene_text(resolved, "resolved.toml");
+  expect_same_values(c, back);
+  EXPECT_TRUE(std::signbit(back.real("disk.gamma")));
+  // Reals stay reals: an integer-valued real is written with a decimal point.
+  const std::string t_1au = line_of(resolved, "T_1au = ");
+  EXPECT_EQ(t_1au.rfind("T_1au = 3.0 ", 0), 0u) << resolved;
+  EXPECT_NE(t_1au.find("# [K]"), std::string::npos) << t_1au;
+  EXPECT_EQ(t_1au.find("(default)"), std::string::npos) << t_1au;
+  const std::string r_out = line_of(resolved, "r_out_au = ");
+  EXPECT_EQ(r_out.rfind("r_out_au = 300.0 ", 0), 0u) << resolved;
+  EXPECT_NE(r_out.find("# [au] (default)"), std::string::npos) << r_out;
+}
+
+TEST(Config, ResolvedTomlRoundTripsRandomDoublesExactly) {
+  Config c = load("");
+  std::mt19937_64 rng(12345);
+  std::vector<double> xs;
+  while (xs.size() < 2000) {
+    const std::uint64_t bits = rng();
+    double x;
+    std::memcpy(&x, &bits, sizeof x);
+    if (std::isfinite(x)) xs.push_back(std::abs(x));
+  }
+  std::uniform_real_distribution<double> uniform(0.0, 1e6);
+  for (int i = 0; i < 500; ++i) xs.push_back(uniform(rng));
+  c.values_["output.times_yr"] = xs;
+  const Config back = load_scene_text(c.resolved_toml(), "resolved.toml");
+  EXPECT_EQ(back.reals("output.times_yr"), xs);
+}
+
+TEST(Config, ResolvedTomlMarksDefaults) {
+  const Config c = load("[grid]\nr_in_au = 2.0\n");
+  const std::string resolved = c.resolved_toml();
+  std::istringstream lines(resolved);
+  std::string line;
+  int defaults = 0;
+  while (std::getline(lines, line)) {
+    if (line.rfind("r_in_au", 0) == 0) {
+      EXPECT_EQ(line.find("(default)"), std::string::npos) << line;
+      EXPECT_NE(line.find("[au]"), std::string::npos) << line;
+    }
+    if (line.rfind("#", 0) != 0 && line.find("(default)") != std::string::npos)
+      ++defaults;
+  }
+  EXPECT_EQ(defaults, static_cast<int>(scene_keys().size()) - 1);
+}
+
+TEST(Config, ReferenceTomlListsEveryKey) {
+  const std::string ref = reference_toml();
+  EXPECT_EQ(ref.rfind("# ", 0), 0u) << "starts with a header comment";
+  EXPECT_NE(ref.find("panoptic reference"), std::string::npos);
+  for (const KeySpec& spec : scene_keys()) {
+    const std::string table = spec.key.substr(0, spec.key.find('.'));
+    const std::string leaf = spec.key.substr(spec.key.find('.') + 1);
+    const size_t header = ref.find("\n[" + table + "]\n");
+    ASSERT_NE(header, std::string::npos) << table;
+    const size_t line = ref.find("\n" + leaf + " = " + spec.default_toml + " ", header);
+    EXPECT_NE(line, std::string::npos) << spec.key;
+    if (!spec.unit.empty() && line != std::string::npos) {
+      const std::string text = ref.substr(line, ref.find('\n', line + 1) - line);
+      EXPECT_NE(text.find("[" + spec.unit + "]"), std::string::npos) << text;
+    }
+  }
+  EXPECT_NE(ref.find("(one of: powerlaw, lbp)"), std::string::npos);
+}
+
+TEST(Config, ReferenceTomlLoadsAsTheDefaults) {
+  const Config ref = load_scene_text(reference_toml(), "reference.toml");
+  expect_same_values(ref, load(""));
+  for (const KeySpec& spec : scene_keys())
+    EXPECT_TRUE(ref.user_set(spec.key)) << spec.key;
+}
+
+TEST(Config, ParamsReferenceTomlIsUpToDate) {
+  const std::string path = std::string(PANOPTIC_SOURCE_DIR) + "/params/reference.toml";
+  std::ifstream in(path, std::ios::binary);
+  ASSERT_TRUE(in) << path << " is missing; generate it with "
+                  << "`build/panoptic reference > params/reference.toml`";
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_TRUE(text.str() == reference_toml())
+      << path << " differs from the schema in src/scene_keys.cpp; regenerate it with "
+      << "`build/panoptic reference > params/reference.toml` and commit it";
+}
+
+// ---------------------------------------------------------------------------------------
+// load_scene() from disk
+
+class SceneFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("panoptic_test_config_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path write(const std::string& name, const std::string& text) {
+    const auto path = dir_ / name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(SceneFile, LoadsAFile) {
+  const auto path = write("x.toml", "[grid]\nr_in_au = 7.0\n");
+  const Config c = load_scene(path, Overrides{"grid.n_cells=12"});
+  EXPECT_EQ(c.real("grid.r_in_au"), 7.0);
+  EXPECT_EQ(c.integer("grid.n_cells"), 12);
+  EXPECT_EQ(c.where("grid.r_in_au"), path.string() + ":2:1");
+  EXPECT_EQ(c.file(), path);
+}
+
+TEST_F(SceneFile, ErrorsNameThePath) {
+  const auto path = write("bad.toml", "[grid]\nr_in_au = -7.0\n");
+  try {
+    load_scene(path);
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    expect_parts(e.what(), {path.string() + ":2:1: grid.r_in_au = -7.0: must be > 0"});
+  }
+}
+
+TEST_F(SceneFile, MissingFile) {
+  try {
+    load_scene(dir_ / "nope.toml");
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    expect_parts(e.what(),
+                 {"nope.toml: cannot read scene file (No such file or directory)"});
+  }
+}
+
+TEST_F(SceneFile, Directory) {
+  try {
+    load_scene(dir_);
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    expect_parts(e.what(), {dir_.string(), "is a directory"});
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// The guard itself, with a stand-in parser that crashes or hangs
+
+TEST(TomlGuard, ParsesGoodText) {
+  const toml::table t = parse_toml_guarded("a = 1\n[b]\nc = \"x\"\n", "g.toml");
+  EXPECT_EQ(t["a"].value<long>(), 1);
+  EXPECT_EQ(t["b"]["c"].value<std::string>(), "x");
+}
+
+void crash_on_boom(std::string_view text) {
+  if (text.find("BOOM") != std::string_view::npos) std::abort();
+  (void)toml::parse(text, std::string_view("child"));
+}
+
+TEST(TomlGuard, CrashOfTheParserIsAConfigErrorWithAPlace) {
+  GuardOptions options;
+  options.child_parse = crash_on_boom;
+  try {
+    parse_toml_guarded("[grid]\nr_in_au = 1.0\nx = BOOM\ny = 2\n", "c.toml", options);
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    // The shortest crashing prefix ends with the final 'M' of BOOM: line 3, column 8.
+    expect_parts(e.what(), {"c.toml:3:8:", "not a valid TOML file",
+                            "the TOML parser crashed on it: SIGABRT", "near line 3"});
+  }
+}
+
+void hang(std::string_view) {
+  for (;;) ::pause();
+}
+
+TEST(TomlGuard, HangOfTheParserIsAConfigError) {
+  GuardOptions options;
+  options.child_parse = hang;
+  options.timeout_s = 1;
+  try {
+    parse_toml_guarded("a = 1\n", "h.toml", options);
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    expect_parts(e.what(),
+                 {"h.toml: not a valid TOML file", "did not finish within 1 s"});
+  }
+}
+
+void throw_other(std::string_view) { throw std::runtime_error("odd"); }
+
+TEST(TomlGuard, OtherExceptionInTheChildIsAConfigError) {
+  GuardOptions options;
+  options.child_parse = throw_other;
+  try {
+    parse_toml_guarded("a = 1\n", "o.toml", options);
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    expect_parts(e.what(), {"o.toml: not a valid TOML file", "odd"});
+  }
+}
+
+}  // namespace
+}  // namespace panoptic
