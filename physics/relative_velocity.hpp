@@ -1,0 +1,238 @@
+#pragma once
+//! Relative velocities of two dust particles at the midplane (spec §3): Brownian motion,
+//! radial and azimuthal drift, vertical settling and turbulence, combined in quadrature;
+//! for the single-size pair (St, eps St) and for a target against small projectiles
+//! (erosion). Sources: Brownian speed of the reduced mass (kinetic theory, as in
+//! Okuzumi et al. 2012 and Birnstiel et al. 2010); drift velocities of Nakagawa, Sekiya &
+//! Hayashi (1986) / Weidenschilling (1977); settling speed as in Okuzumi et al. (2012);
+//! turbulence: closed forms of Ormel & Cuzzi (2007, OC07) eqs. 27-29 with V_g^2 = alpha
+//! c_s^2, St_eta = Re^-1/2, y_a = 1.6.
+//!
+//! Every function is a template on the scalar type T (double or Eigen::AutoDiffScalar);
+//! see physics/particle.hpp for the rules. The components are returned *squared* (dv2_*):
+//! a squared difference is smooth where the difference changes sign, while |v1 - v2| is
+//! not. The dv_* speeds are for reports only.
+#include <cmath>
+
+#include "physics/local_gas.hpp"
+#include "physics/particle.hpp"
+#include "src/units.hpp"
+
+namespace panoptic::physics {
+
+//! Size ratio eps = St2/St1 of the single-size pair (spec §3) [-].
+inline constexpr double kPairSizeRatio = 0.5;
+//! OC07 y_a = t_12*/t_1 [-].
+inline constexpr double kOc07Ya = 1.6;
+//! p of the soft (St_hi, St_lo) ordering in dv2_turbulent [-].
+inline constexpr double kOrderPower = 32.0;
+
+//! Parameters of the turbulent term (spec §3.5, §10.1).
+struct TurbulenceModel {
+  double vg2_factor = 1.0;  //!< V_g^2 = vg2_factor alpha c_s^2 (OC07: 1; alt. 1.5)
+  double y_a = kOc07Ya;     //!< OC07 y_a [-]
+  double blend_half_width_dex = 0.1;  //!< 5%-95% half width of the regime blends [dex]
+};
+
+//! OC07 intermediate-regime coefficient (spec §3.5; Ormel & Cuzzi 2007, eq. 28):
+//!   beta(eps) = 2 y_a - (1 + eps) + (2 / (1 + eps)) [1/(1 + y_a) + eps^3/(y_a + eps)],
+//! eps = St2/St1 <= 1. beta(1) = 1.969, beta(0.5) = 2.292, beta(0) = 2.969 [-].
+template <class T>
+T beta_oc07(const T& eps, double y_a = kOc07Ya) {
+  const T e3 = eps * eps * eps;
+  const T bracket = 1.0 / (1.0 + y_a) + e3 / (y_a + eps);
+  return 2.0 * y_a - (1.0 + eps) + 2.0 / (1.0 + eps) * bracket;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Single-particle velocities relative to the local Keplerian frame
+// ---------------------------------------------------------------------------------------------
+
+//! Radial drift v_r = (-2 St eta v_K + v_r,gas) / (1 + St^2) (spec §3.2, §6.1; Nakagawa,
+//! Sekiya & Hayashi 1986; Takeuchi & Lin 2002) [cm s^-1].
+template <class T>
+T v_radial_drift(const T& St, const LocalGas& gas) {
+  const T denom = 1.0 + St * St;
+  return (-2.0 * gas.headwind() * St + gas.v_r_gas) / denom;
+}
+
+//! Azimuthal velocity relative to Keplerian, v_phi - v_K = -eta v_K / (1 + St^2)
+//! (spec §3.3; Nakagawa, Sekiya & Hayashi 1986) [cm s^-1].
+template <class T>
+T v_azimuthal_offset(const T& St, const LocalGas& gas) {
+  const T denom = 1.0 + St * St;
+  return -gas.headwind() / denom;
+}
+
+//! Settling speed at z = h_d, v_z = h_d Omega St / (1 + St) (spec §3.4; Okuzumi et al.
+//! 2012, the St/(1+St) form caps it at the free-fall-like h_d Omega for St >> 1) [cm
+//! s^-1].
+template <class T>
+T v_settling(const T& St, const LocalGas& gas) {
+  const T h_d = dust_scale_height(St, gas);
+  return h_d * gas.omega_k * St / (1.0 + St);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Squared relative-velocity components of a pair [cm^2 s^-2]
+// ---------------------------------------------------------------------------------------------
+
+//! Brownian motion, dv_B^2 = 8 k_B T (m1 + m2) / (pi m1 m2) (spec §3.1) [cm^2 s^-2];
+//! m1, m2 [g].
+template <class T>
+T dv2_brownian(const T& m1, const T& m2, const LocalGas& gas) {
+  const double kt = units::kBoltzmann * gas.temperature;
+  return 8.0 * kt * (m1 + m2) / (units::kPi * m1 * m2);
+}
+
+//! Radial drift, (v_r,1 - v_r,2)^2 (spec §3.2) [cm^2 s^-2].
+template <class T>
+T dv2_radial(const T& St1, const T& St2, const LocalGas& gas) {
+  const T d = v_radial_drift(St1, gas) - v_radial_drift(St2, gas);
+  return d * d;
+}
+
+//! Azimuthal drift, (eta v_K [1/(1 + St1^2) - 1/(1 + St2^2)])^2 (spec §3.3) [cm^2 s^-2].
+template <class T>
+T dv2_azimuthal(const T& St1, const T& St2, const LocalGas& gas) {
+  const T d = v_azimuthal_offset(St1, gas) - v_azimuthal_offset(St2, gas);
+  return d * d;
+}
+
+//! Vertical settling, (v_z,1 - v_z,2)^2, each at its own z = h_d (spec §3.4) [cm^2 s^-2].
+template <class T>
+T dv2_vertical(const T& St1, const T& St2, const LocalGas& gas) {
+  const T d = v_settling(St1, gas) - v_settling(St2, gas);
+  return d * d;
+}
+
+//! Turbulence, Ormel & Cuzzi (2007) closed forms (spec §3.5) [cm^2 s^-2].
+//! With St1 >= St2, eps = St2/St1, St_eta = Re^-1/2, V_g^2 = f alpha c_s^2:
+//!   tight,  OC07 eq. 27:
+//!     A_t = (St1-St2)/(St1+St2) [St1^2/(St1+St_eta) - St2^2/(St2+St_eta)]
+//!   intermediate, OC07 eq. 28:  A_i = beta(eps) St1
+//!   heavy,  OC07 eq. 29:        A_h = 1/(1 + St1) + 1/(1 + St2)
+//! blended smoothly in ln St1 (spec §3.5: logistic over +-0.1 dex at each boundary):
+//!   dv_t^2 = V_g^2 [(1 - s_eta) A_t + s_eta ((1 - s_1) A_i + s_1 A_h)],
+//!   s_eta = log_step(St1; St_eta, w),  s_1 = log_step(St1; 1, w),  w = 0.1 dex,
+//! so the weights sum to 1 exactly. The regimes do not match at their boundaries
+//! (at St1 = St_eta, A_i/A_t ~ 20 for eps = 0.5; at St1 = 1, A_i/A_h = 2.0), so the
+//! blend is steep but C-infinity; at a boundary it gives the mean of the two dv_t^2.
+//!
+//! Ordering: A_t and A_h are symmetric in (St1, St2) and take the arguments as given.
+//! A_i and the weights need the larger St. A hard swap would put a kink into dv_ls
+//! where a target crosses its projectile's St (dv_ls enters the growth rate of erosion
+//! option E2, spec §5.2), so the order is smooth:
+//!   St_hi = soft_max(St1, St2, 32),  eps = soft_min(St1, St2, 32) / St_hi.
+//! For St2/St1 <= 0.8 this equals the hard order to < 1e-4 (1e-11 for the eps = 0.5
+//! pair); for equal sizes it raises St_hi by 2^(1/32) = 1.022 and gives eps = 0.958.
+template <class T>
+T dv2_turbulent(const T& St1, const T& St2, const LocalGas& gas,
+                const TurbulenceModel& model = {}) {
+  // OC07 normalisation V_g^2 and St_eta = t_eta/t_L = Re^-1/2
+  const double vg2 = model.vg2_factor * gas.alpha * gas.c_s * gas.c_s;
+  const double st_eta = 1.0 / std::sqrt(gas.reynolds());
+  const T g1 = St1 * St1 / (St1 + st_eta);
+  const T g2 = St2 * St2 / (St2 + st_eta);
+  const T tight = (St1 - St2) / (St1 + St2) * (g1 - g2);
+  const T s_hi = soft_max(St1, St2, kOrderPower);
+  const T s_lo = soft_min(St1, St2, kOrderPower);
+  const T eps = s_lo / s_hi;
+  const T inter = beta_oc07(eps, model.y_a) * s_hi;
+  const T heavy = 1.0 / (1.0 + St1) + 1.0 / (1.0 + St2);
+  const T w_eta = log_step(s_hi, st_eta, model.blend_half_width_dex);
+  const T w_one = log_step(s_hi, 1.0, model.blend_half_width_dex);
+  const T upper = (1.0 - w_one) * inter + w_one * heavy;
+  return vg2 * ((1.0 - w_eta) * tight + w_eta * upper);
+}
+
+//! The five squared components of a pair [cm^2 s^-2] and their quadrature sum.
+template <class T>
+struct RelativeVelocity2 {
+  T brownian;
+  T radial;
+  T azimuthal;
+  T vertical;
+  T turbulent;
+  //! Total dv^2 = sum of the components (spec §3.6) [cm^2 s^-2].
+  T total() const { return brownian + radial + azimuthal + vertical + turbulent; }
+};
+
+//! All components for particles (St1, m1) and (St2, m2) [cm^2 s^-2].
+template <class T>
+RelativeVelocity2<T> relative_velocity2(const T& St1, const T& St2, const T& m1,
+                                        const T& m2, const LocalGas& gas,
+                                        const TurbulenceModel& model = {}) {
+  return {dv2_brownian(m1, m2, gas), dv2_radial(St1, St2, gas),
+          dv2_azimuthal(St1, St2, gas), dv2_vertical(St1, St2, gas),
+          dv2_turbulent(St1, St2, gas, model)};
+}
+
+//! Total relative speed dv = sqrt(dv_B^2 + dv_r^2 + dv_phi^2 + dv_z^2 + dv_t^2) (spec
+//! §3.6) [cm s^-1]. Smooth: the Brownian term keeps the radicand positive.
+template <class T>
+T dv_total(const T& St1, const T& St2, const T& m1, const T& m2, const LocalGas& gas,
+           const TurbulenceModel& model = {}) {
+  using std::sqrt;
+  const T dv2 = relative_velocity2(St1, St2, m1, m2, gas, model).total();
+  return sqrt(dv2);
+}
+
+//! Single-size collision speed dv(St, eps St) of the mass-dominating particle (St, m)
+//! with its partner of the same filling factor (spec §3 pair convention; Sato, Okuzumi &
+//! Ida 2016): St2 = eps St and, with Epstein scaling St ~ a, m2 = eps^3 m (used only by
+//! the Brownian term, which matters only for Epstein-sized grains) [cm s^-1].
+template <class T>
+T dv_pair(const T& St, const T& m, const LocalGas& gas, double eps = kPairSizeRatio,
+          const TurbulenceModel& model = {}) {
+  const T st2 = eps * St;
+  const T m2 = (eps * eps * eps) * m;
+  return dv_total(St, st2, m, m2, gas, model);
+}
+
+//! Speed dv_ls of the target (St, m) against small projectiles of Stokes number st_s and
+//! mass m_s (spec §3, erosion; default projectile a monomer, or St_s = 1e-4) [cm s^-1].
+template <class T>
+T dv_small_projectile(const T& St, const T& m, double st_s, double m_s,
+                      const LocalGas& gas, const TurbulenceModel& model = {}) {
+  return dv_total(St, T(st_s), m, T(m_s), gas, model);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Component speeds, for reports and diagnostics (not smooth where the difference
+// vanishes)
+// ---------------------------------------------------------------------------------------------
+
+//! Brownian speed [cm s^-1].
+template <class T>
+T dv_brownian(const T& m1, const T& m2, const LocalGas& gas) {
+  using std::sqrt;
+  return sqrt(dv2_brownian(m1, m2, gas));
+}
+//! |v_r,1 - v_r,2| [cm s^-1].
+template <class T>
+T dv_radial(const T& St1, const T& St2, const LocalGas& gas) {
+  using std::abs;
+  return abs(v_radial_drift(St1, gas) - v_radial_drift(St2, gas));
+}
+//! |v_phi,1 - v_phi,2| [cm s^-1].
+template <class T>
+T dv_azimuthal(const T& St1, const T& St2, const LocalGas& gas) {
+  using std::abs;
+  return abs(v_azimuthal_offset(St1, gas) - v_azimuthal_offset(St2, gas));
+}
+//! |v_z,1 - v_z,2| [cm s^-1].
+template <class T>
+T dv_vertical(const T& St1, const T& St2, const LocalGas& gas) {
+  using std::abs;
+  return abs(v_settling(St1, gas) - v_settling(St2, gas));
+}
+//! Turbulent speed [cm s^-1].
+template <class T>
+T dv_turbulent(const T& St1, const T& St2, const LocalGas& gas,
+               const TurbulenceModel& model = {}) {
+  using std::sqrt;
+  return sqrt(dv2_turbulent(St1, St2, gas, model));
+}
+
+}  // namespace panoptic::physics
