@@ -62,6 +62,37 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
     throw std::logic_error("DustTransport: evolving gas needs the viscous stencil");
 }
 
+void DustTransport::set_snowline(StateLayout& layout, int face, double f_ice,
+                                 int qm_slot) {
+  snow_face_ = face;
+  f_ice_ = f_ice;
+  snow_qm_slot_ = qm_slot;
+  const double r_out = grid_.r_f(grid_.n_cells());
+  g_sub_ = layout.add_global_var(
+      {"m_sublimated", "initial dust mass",
+       "ice that sublimated at the snow line, in units of the "
+       "initial dust mass on the grid",
+       layout.cell_var(slot_).abs_scale * units::kPi * r_out * r_out / mass_unit_,
+       false});
+}
+
+template <class T>
+void DustTransport::received_flows(int f, const T* flows, T* received,
+                                   T& sublimated) const {
+  const int nt = static_cast<int>(transported_.size());
+  for (int k = 0; k < nt; ++k) received[k] = flows[k];
+  sublimated = T(0.0);
+  if (f != snow_face_ || value_of(flows[0]) >= 0.0) return;
+  // spec §6.3 and §11 #18: the ice sublimates, m -> (1 - f_ice) m, phi kept
+  const double keep = 1.0 - f_ice_;
+  for (int k = 0; k < nt; ++k) received[k] = keep * flows[k];
+  for (int k = 0; k < nt; ++k)
+    if (transported_[k] ==
+        snow_qm_slot_)  // Q_m = Sigma ln(m/m_ref): ln m drops by ln keep
+      received[k] += keep * std::log(keep) * flows[0];
+  sublimated = f_ice_ * flows[0];  // < 0: mass leaving the dust
+}
+
 template <class T>
 T DustTransport::velocity(int f, const T* ya, const T* yb, const T& st) const {
   using std::log;
@@ -133,6 +164,7 @@ void DustTransport::declare_pattern(PatternBuilder& p) const {
       if (f > 0) rows.push_back(layout_.index(f - 1, s));
     }
     if (f == 0) rows.push_back(layout_.global_index(g_out_));
+    if (f == snow_face_) rows.push_back(layout_.global_index(g_sub_));
     for (long row : rows)
       for (int j = 0; j < nv; ++j) {
         p.add(row, layout_.index(a, j));
@@ -144,16 +176,19 @@ void DustTransport::declare_pattern(PatternBuilder& p) const {
 void DustTransport::add_rhs(double, std::span<const double> y,
                             std::span<double> ydot) const {
   const int n = grid_.n_cells(), nt = static_cast<int>(transported_.size());
-  std::array<double, kMaxVars> flows{};
+  std::array<double, kMaxVars> flows{}, received{};
+  double sublimated = 0.0;
   for (int f = 0; f < n; ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
     face_flows(f, &y[layout_.index(a, 0)], &y[layout_.index(b, 0)], flows.data());
+    received_flows(f, flows.data(), received.data(), sublimated);
     for (int k = 0; k < nt; ++k) {
       const int s = transported_[k];
       ydot[layout_.index(f, s)] += flows[k] / grid_.area(f);
-      if (f > 0) ydot[layout_.index(f - 1, s)] -= flows[k] / grid_.area(f - 1);
+      if (f > 0) ydot[layout_.index(f - 1, s)] -= received[k] / grid_.area(f - 1);
     }
     if (f == 0) ydot[layout_.global_index(g_out_)] -= flows[0] / mass_unit_;
+    if (f == snow_face_) ydot[layout_.global_index(g_sub_)] -= sublimated / mass_unit_;
   }
 }
 
@@ -161,27 +196,36 @@ void DustTransport::add_jacobian(double, std::span<const double> y,
                                  JacobianValues& jac) const {
   const int n = grid_.n_cells(), nv = layout_.n_cell_vars();
   const int nt = static_cast<int>(transported_.size()), nloc = 2 * nv;
-  std::array<AD, kMaxVars> ya, yb, flows;
+  std::array<AD, kMaxVars> ya, yb, flows, received;
+  AD sublimated;
   for (int f = 0; f < n; ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
     for (int j = 0; j < nv; ++j) {
-      ya[j] = ad_seed(y[layout_.index(a, j)], nloc, j);
-      yb[j] = ad_seed(y[layout_.index(b, j)], nloc, nv + j);
+      ya[j] = ad_seed(y[layout_.index(a, j)], j);
+      yb[j] = ad_seed(y[layout_.index(b, j)], nv + j);
     }
     face_flows(f, ya.data(), yb.data(), flows.data());
+    received_flows(f, flows.data(), received.data(), sublimated);
+    auto column = [&](int j) {
+      return j < nv ? layout_.index(a, j) : layout_.index(b, j - nv);
+    };
     for (int k = 0; k < nt; ++k) {
       const auto& d = flows[k].derivatives();
-      if (d.size() == 0) continue;  // flow independent of the state (e.g. zero)
+      const auto& dr = received[k].derivatives();
       const int s = transported_[k];
       for (int j = 0; j < nloc; ++j) {
-        if (d[j] == 0.0) continue;
-        const long col = j < nv ? layout_.index(a, j) : layout_.index(b, j - nv);
-        jac.add(layout_.index(f, s), col, d[j] / grid_.area(f));
-        if (f > 0) jac.add(layout_.index(f - 1, s), col, -d[j] / grid_.area(f - 1));
-        if (f == 0 && k == 0)
-          jac.add(layout_.global_index(g_out_), col, -d[j] / mass_unit_);
+        if (d[j] != 0.0) jac.add(layout_.index(f, s), column(j), d[j] / grid_.area(f));
+        if (f > 0 && dr[j] != 0.0)
+          jac.add(layout_.index(f - 1, s), column(j), -dr[j] / grid_.area(f - 1));
+        if (f == 0 && k == 0 && d[j] != 0.0)
+          jac.add(layout_.global_index(g_out_), column(j), -d[j] / mass_unit_);
       }
     }
+    if (f == snow_face_)
+      for (int j = 0; j < nloc; ++j)
+        if (sublimated.derivatives()[j] != 0.0)
+          jac.add(layout_.global_index(g_sub_), column(j),
+                  -sublimated.derivatives()[j] / mass_unit_);
   }
 }
 

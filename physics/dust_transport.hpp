@@ -9,6 +9,7 @@
 //! Boundaries (spec §6.3): inner face open (outflow with the upwind state, no diffusive
 //! flux, no inflow; the mass that leaves is booked in the global variable m_out_dust);
 //! outer face closed (zero flux).
+//! Snow line (spec §6.3, optional): inward flow through its face loses f_ice of its mass.
 //! Other conserved quantities that ride with the dust (the log-moments Q_m, Q_phi of
 //! spec §6.2) are "passengers": add_passenger() transports them with the same operator.
 //! Jacobian: exact, by forward-mode AD of the face flux over its two-cell stencil.
@@ -45,6 +46,13 @@ class DustTransport : public PhysicsModule {
   //! Transports another cell variable with the same flux operator (before set-up ends).
   void add_passenger(int slot) { transported_.push_back(slot); }
 
+  //! Snow line at face `face` (spec §6.3): icy dust crossing it inward loses the fraction
+  //! f_ice of its mass (booked in the global variable m_sublimated, registered here);
+  //! the log-moment passenger `qm_slot` follows m -> (1 - f_ice) m, the others (phi) are
+  //! kept per unit mass. Call before set-up ends.
+  void set_snowline(StateLayout& layout, int face, double f_ice, int qm_slot);
+  int sublimated_slot() const { return g_sub_; }
+
   std::string_view name() const override { return "dust_transport"; }
   void declare_pattern(PatternBuilder& pattern) const override;
   void add_rhs(double t, std::span<const double> y,
@@ -68,6 +76,10 @@ class DustTransport : public PhysicsModule {
   void face_flows(int f, const T* ya, const T* yb, T* flows) const;
   template <class T>
   T velocity(int f, const T* ya, const T* yb, const T& st) const;
+  //! What the inner cell of face f receives of `flows` (all of it, except for inward
+  //! flow through the snow line), and the mass flow that sublimates there.
+  template <class T>
+  void received_flows(int f, const T* flows, T* received, T& sublimated) const;
 
   const StateLayout& layout_;
   const Grid& grid_;
@@ -78,6 +90,8 @@ class DustTransport : public PhysicsModule {
   int slot_ = -1, g_out_ = -1;
   double mass_unit_ = 1.0;
   std::vector<int> transported_;
+  int snow_face_ = -1, g_sub_ = -1, snow_qm_slot_ = -1;
+  double f_ice_ = 0.0;
   // Per face (0..n-1): 2 pi r_f, centre spacing, gas diffusivity, (H/r)^2 v_K, and the
   // static eta v_K (used when the gas does not evolve).
   std::vector<double> two_pi_r_, dr_, d_gas_, hr2vk_, eta_vk_static_;

@@ -10,15 +10,21 @@
 namespace panoptic {
 
 //! Largest number of variables per cell times the widest stencil (two cells per face).
-inline constexpr int kMaxLocalDerivs = 16;
+inline constexpr int kMaxLocalDerivs = 12;
 
-using ADVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLocalDerivs, 1>;
+//! Fixed-size derivative vectors: a constant made from a double (AD(x)) then carries
+//! zeros of the full size. (With dynamic sizes an AD constant has an empty derivative
+//! vector, and Eigen's AutoDiff does not reconcile sizes inside expression templates:
+//! mixing the two reads past the end in release builds.)
+using ADVector = Eigen::Matrix<double, kMaxLocalDerivs, 1>;
 using AD = Eigen::AutoDiffScalar<ADVector>;
 
-//! An AD variable with value `v`, seeded as input `k` of `n` local inputs.
-inline AD ad_seed(double v, int n, int k) { return AD(v, n, k); }
-//! An AD constant (zero derivatives) with `n` local inputs.
-inline AD ad_const(double v, int n) { return AD(v, ADVector::Zero(n)); }
+//! An AD variable with value `v`, seeded as local input `k` (< kMaxLocalDerivs).
+inline AD ad_seed(double v, int k) {
+  AD a(v);
+  a.derivatives()[k] = 1.0;
+  return a;
+}
 
 inline double value_of(double x) { return x; }
 inline double value_of(const AD& x) { return x.value(); }

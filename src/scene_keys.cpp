@@ -146,6 +146,84 @@ std::vector<KeySpec> make_keys() {
       real("transport.St_slope", "0.0", "", "prescribed St ∝ r^St_slope", -5.0, false,
            5.0, false),
 
+      // [growth] spec §3, §4.1: the mass of the mass-dominating particle (variable Q_m)
+      flag("growth.enabled", "false",
+           "grow the mass-dominating particle (spec §4.1); off: St is prescribed by "
+           "transport.St"),
+      positive("growth.f_grow", "1.0", "", "multiplier of the growth rate (spec §4.1)"),
+      real("growth.eps", "0.5", "",
+           "size ratio of the collision partner, St2 = eps St (§3)", 0.0, true, 1.0,
+           true),
+      choice("growth.drag_law", "stokes_re", {"stokes_re", "epstein"},
+             "drag: Epstein joined smoothly to Stokes and Reynolds-dependent drag, or "
+             "Epstein "
+             "only (spec §2)"),
+      real("growth.St_max", "1e4", "",
+           "soft cap of St (m stops growing there; planetesimals "
+           "are converted by the planetesimal channels)",
+           1.0, false),
+
+      // [porosity] spec §4.2-§4.4 (variable Q_phi; off: phi = 1)
+      flag("porosity.enabled", "false", "evolve the filling factor phi (spec §4.3)"),
+      real("porosity.s_hs", "-0.58", "", "hit-and-stick slope d ln phi/d ln m (§4.3)",
+           -1.0, false, 0.0, false),
+      positive("porosity.b", "0.15", "",
+               "compression threshold E_imp = 3 b E_roll (§4.2)"),
+      real("porosity.phi_max", "0.5", "", "largest filling factor (§4.3)", 0.0, true, 1.0,
+           false),
+      flag("porosity.gas_compaction", "true", "static compression by gas drag (§4.3)"),
+      flag("porosity.self_gravity", "true", "static compression by self-gravity (§4.3)"),
+
+      // [erosion] spec §5.1-§5.2
+      choice("erosion.model", "none", {"none", "halt", "balance"},
+             "erosion by small projectiles: halt (E1) or rate balance (E2)"),
+      positive("erosion.v_eros_m_s", "40.0", "m s^-1", "erosion threshold speed (§5.1)"),
+      positive("erosion.width", "0.01", "",
+               "width w of the smooth erosion switch (spec §5.2 says 0.05: with fast "
+               "growth that lets particles overshoot the stall by 20-40% in St)"),
+      real("erosion.f_s", "0.1", "", "balance: mass fraction of small projectiles (§5.2)",
+           0.0, false, 1.0, true),
+      real("erosion.eps_eros", "1.0", "",
+           "balance: mass eroded per projectile mass (§5.2)", 0.0, false),
+      real("erosion.St_small", "0.0", "",
+           "Stokes number of the small projectiles; 0 = a monomer (§3)", 0.0, false),
+
+      // [fragmentation], [bouncing] spec §5.3
+      flag("fragmentation.enabled", "false", "similar-size fragmentation (§5.3)"),
+      positive("fragmentation.v_frag_ice_m_s", "60.0", "m s^-1",
+               "ice fragmentation speed"),
+      positive("fragmentation.v_frag_sil_m_s", "5.0", "m s^-1",
+               "silicate fragmentation speed"),
+      flag("bouncing.enabled", "false", "no sticking of compact aggregates (§5.3)"),
+      real("bouncing.phi_bounce", "0.3", "",
+           "filling factor above which aggregates bounce", 0.0, true, 1.0, false),
+
+      // [snowline] spec §1.7, §6.3
+      flag("snowline.enabled", "true",
+           "ice outside r_snow, silicate inside; drifting ice loses f_ice of its mass "
+           "there"),
+      real("snowline.f_ice", "0.5", "", "ice mass fraction of the icy solids (§1.7)", 0.0,
+           false, 1.0, true),
+
+      // [material] spec §0: monomer constants per species
+      positive("material.a0_um", "0.1", "micron", "monomer radius (both species)"),
+      positive("material.xi_crit_angstrom", "8.0", "angstrom",
+               "critical rolling displacement"),
+      positive("material.z0_nm", "0.4", "nm",
+               "equilibrium atomic spacing (Tabor parameter)"),
+      positive("material.rolling_radius_factor", "1.0", "",
+               "R_r = factor * a0 in E_roll = 6 pi^2 gamma R_r xi_crit (§0: 1 or 0.5)"),
+      positive("material.ice_rho0", "1.4", "g cm^-3", "ice monomer density"),
+      positive("material.ice_gamma", "100.0", "erg cm^-2", "ice surface energy"),
+      positive("material.ice_youngs_gpa", "7.0", "GPa", "ice Young's modulus"),
+      real("material.ice_poisson", "0.25", "", "ice Poisson ratio", 0.0, false, 0.5,
+           true),
+      positive("material.sil_rho0", "3.0", "g cm^-3", "silicate monomer density"),
+      positive("material.sil_gamma", "25.0", "erg cm^-2", "silicate surface energy"),
+      positive("material.sil_youngs_gpa", "54.0", "GPa", "silicate Young's modulus"),
+      real("material.sil_poisson", "0.17", "", "silicate Poisson ratio", 0.0, false, 0.5,
+           true),
+
       // [grid] spec §10.2
       integer("grid.n_cells", "250", "number of log-spaced radial cells", 4, 1e6),
       positive("grid.r_in_au", "1.0", "au", "inner edge (open: outflow, booked)"),
@@ -162,6 +240,17 @@ std::vector<KeySpec> make_keys() {
               1, 1e12),
       real("solver.max_dt_yr", "0.0", "yr", "largest CVODE step (0 = unlimited)", 0.0,
            false),
+
+      // [solver] (continued) and [checkpoint]: restart, README "Restart"
+      flag("solver.reinit_at_snapshots", "true",
+           "reinitialise CVODE at every snapshot time, so that a run restarted from a "
+           "checkpoint is bit-for-bit identical to one never stopped"),
+      real("checkpoint.every_wall_s", "1800.0", "s",
+           "checkpoint at the first snapshot after this much wall time since the last "
+           "one (0 = off); one is always written at the end and when stopped",
+           0.0, false),
+      integer("checkpoint.every_snapshots", "0",
+              "checkpoint at every k-th snapshot (0 = off)", 0, 1e6),
 
       // [output]
       positive("output.t_end_yr", "1e6", "yr", "end of the run"),

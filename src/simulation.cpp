@@ -6,7 +6,10 @@
 
 #include "disk/gas_disk.hpp"
 #include "disk/viscous_gas.hpp"
+#include "physics/contact_mechanics.hpp"
 #include "physics/dust_transport.hpp"
+#include "physics/local_gas.hpp"
+#include "physics/porous_growth.hpp"
 #include "physics/stokes_model.hpp"
 #include "src/run_output.hpp"
 #include "src/units.hpp"
@@ -42,7 +45,60 @@ std::string num(double x) {
   return s.str();
 }
 
+physics::MonomerMaterial material(const Config& cfg, const std::string& sp) {
+  physics::MonomerMaterial m;
+  m.a0 = cfg.real("material.a0_um") * 1e-4;
+  m.xi_crit = cfg.real("material.xi_crit_angstrom") * 1e-8;
+  m.z0 = cfg.real("material.z0_nm") * 1e-7;
+  m.rolling_radius_factor = cfg.real("material.rolling_radius_factor");
+  m.rho0 = cfg.real("material." + sp + "_rho0");
+  m.gamma_surf = cfg.real("material." + sp + "_gamma");
+  m.youngs_modulus = cfg.real("material." + sp + "_youngs_gpa") * 1e10;  // GPa -> Ba
+  m.poisson = cfg.real("material." + sp + "_poisson");
+  return m;
+}
+
 }  // namespace
+
+physics::Species species_from_config(const Config& cfg, const std::string& sp) {
+  const auto mat = material(cfg, sp);
+  const auto contact = physics::contact_properties(mat);
+  physics::Species s;
+  s.a0 = mat.a0;
+  s.rho0 = mat.rho0;
+  s.m0 = contact.m0;
+  s.e_roll = contact.e_roll;
+  s.v_frag = 100.0 * cfg.real("fragmentation.v_frag_" + sp + "_m_s");
+  return s;
+}
+
+physics::GrowthOptions growth_options_from_config(const Config& cfg) {
+  physics::GrowthOptions o;
+  o.f_grow = cfg.real("growth.f_grow");
+  o.eps = cfg.real("growth.eps");
+  o.drag = cfg.str("growth.drag_law") == "epstein" ? physics::DragLaw::kEpstein
+                                                   : physics::DragLaw::kStokesRe;
+  o.st_max = cfg.real("growth.St_max");
+  o.porosity = cfg.flag("porosity.enabled");
+  o.s_hs = cfg.real("porosity.s_hs");
+  o.b = cfg.real("porosity.b");
+  o.phi_max = cfg.real("porosity.phi_max");
+  o.gas_compaction = cfg.flag("porosity.gas_compaction");
+  o.self_gravity = cfg.flag("porosity.self_gravity");
+  const auto& e = cfg.str("erosion.model");
+  o.erosion = e == "halt"      ? physics::ErosionModel::kHalt
+              : e == "balance" ? physics::ErosionModel::kBalance
+                               : physics::ErosionModel::kNone;
+  o.v_eros = 100.0 * cfg.real("erosion.v_eros_m_s");
+  o.w_eros = cfg.real("erosion.width");
+  o.f_s = cfg.real("erosion.f_s");
+  o.eps_eros = cfg.real("erosion.eps_eros");
+  o.st_small = cfg.real("erosion.St_small");
+  o.fragmentation = cfg.flag("fragmentation.enabled");
+  o.bouncing = cfg.flag("bouncing.enabled");
+  o.phi_bounce = cfg.real("bouncing.phi_bounce");
+  return o;
+}
 
 void validate_scene(const Config& cfg) {
   const double r_in = cfg.real("grid.r_in_au"), r_out = cfg.real("grid.r_out_au");
@@ -64,6 +120,11 @@ void validate_scene(const Config& cfg) {
     if (i > 0 && times[i] <= times[i - 1])
       cfg.fail("output.times_yr", "times must be strictly increasing; sort the list");
   }
+  if (cfg.flag("porosity.enabled") && !cfg.flag("growth.enabled"))
+    cfg.fail(
+        "porosity.enabled",
+        "needs growth.enabled = true (the filling factor evolves as the particle grows); "
+        "turn growth on or porosity off");
   if (cfg.str("dust.init") == "gaussian_ring") {
     const double r0 = cfg.real("dust.ring_r_au");
     if (r0 <= r_in || r0 >= r_out)
@@ -82,8 +143,20 @@ Simulation::Simulation(const Config& cfg)
   gas_.static_sigma.resize(n);
   for (int i = 0; i < n; ++i) gas_.static_sigma[i] = disk_->sigma_g(grid_.r_c(i));
 
-  // Initial dust (spec §6.4: Sigma_d = Z Sigma_g), or a test ring on the floor.
+  // Monomer species per cell (spec §1.7): silicate inside the snow line, ice outside.
+  const bool snowline = cfg.flag("snowline.enabled");
+  const double r_snow = disk_->r_snow();
+  const auto ice = species_from_config(cfg, "ice"), sil = species_from_config(cfg, "sil");
+  std::vector<bool> inside(n, false);
+  for (int i = 0; i < n; ++i) {
+    inside[i] = snowline && std::isfinite(r_snow) && grid_.r_c(i) < r_snow;
+    species_.push_back(inside[i] ? sil : ice);
+  }
+
+  // Initial dust (spec §6.4: Sigma_d = Z Sigma_g, Z_in = (1 - f_ice) Z_out, spec §1.7),
+  // or a test ring on the floor.
   const double z = cfg.real("dust.dust_to_gas"), floor = cfg.real("dust.sigma_floor_rel");
+  const double f_ice = cfg.real("snowline.f_ice");
   sigma_d0_.resize(n);
   for (int i = 0; i < n; ++i) {
     if (cfg.str("dust.init") == "gaussian_ring") {
@@ -92,7 +165,7 @@ Simulation::Simulation(const Config& cfg)
                                        cfg.real("dust.ring_width_au") * kAu) +
                      floor * gas_.static_sigma[i];
     } else {
-      sigma_d0_[i] = z * gas_.static_sigma[i];
+      sigma_d0_[i] = (inside[i] ? 1.0 - f_ice : 1.0) * z * gas_.static_sigma[i];
     }
     dust_mass0_ += sigma_d0_[i] * grid_.area(i);
   }
@@ -101,12 +174,34 @@ Simulation::Simulation(const Config& cfg)
       *std::max_element(gas_.static_sigma.begin(), gas_.static_sigma.end());
   sigma_scale_ = sigma_d_max;
 
-  // Prescribed Stokes number (engine scenes; the growth model replaces it).
-  std::vector<double> st(n);
-  for (int i = 0; i < n; ++i)
-    st[i] = cfg.real("transport.St") *
-            std::pow(grid_.r_c(i) / kAu, cfg.real("transport.St_slope"));
-  stokes_ = std::make_unique<PrescribedStokes>(std::move(st));
+  // Stokes number: from the particles of the growth model (spec §2), or prescribed.
+  const bool growth = cfg.flag("growth.enabled");
+  if (growth) {
+    const auto dlnp = dlnp_dlnr_centres(*disk_, grid_, gas_.static_sigma);
+    std::vector<physics::LocalGas> local(n);
+    for (int i = 0; i < n; ++i) {
+      const double r = grid_.r_c(i);
+      local[i] = physics::make_local_gas(gas_.static_sigma[i], disk_->temperature(r), r,
+                                         disk_->star().mass, disk_->alpha(), dlnp[i],
+                                         disk_->thermal().mu, disk_->thermal().sigma_mol);
+    }
+    cell_gas_ = std::make_unique<CellGas>(std::move(local), gas_);
+    codec_ = std::make_unique<ParticleCodec>();
+    codec_->m_ref = std::min(ice.m0, sil.m0);
+    for (int i = 0; i < n; ++i)
+      codec_->x_lo.push_back(std::log(species_[i].m0 / codec_->m_ref));
+    // Below this Sigma_d the ratios Q/Sigma_d are noise: 1e-3 of CVODE's absolute
+    // tolerance.
+    codec_->eps_sigma = 1e-3 * cfg.real("solver.atol_sigma") * sigma_d_max;
+    stokes_ = std::make_unique<GrowthStokes>(*codec_, *cell_gas_, species_,
+                                             growth_options_from_config(cfg).drag);
+  } else {
+    std::vector<double> st(n);
+    for (int i = 0; i < n; ++i)
+      st[i] = cfg.real("transport.St") *
+              std::pow(grid_.r_c(i) / kAu, cfg.real("transport.St_slope"));
+    stokes_ = std::make_unique<PrescribedStokes>(std::move(st));
+  }
 
   // Modules register their variables in this order; the layout is then frozen.
   layout_ = std::make_shared<StateLayout>(n);
@@ -124,6 +219,21 @@ Simulation::Simulation(const Config& cfg)
   auto transport = std::make_unique<DustTransport>(
       *layout_, grid_, *disk_, gas_, stencil, *stokes_, topt, sigma_d_max, dust_mass0_);
   transport_ = transport.get();
+  if (growth) {
+    codec_->sigma_slot = transport->sigma_slot();
+    auto g =
+        std::make_unique<PorousGrowth>(*layout_, *codec_, *cell_gas_, *stokes_, species_,
+                                       growth_options_from_config(cfg), sigma_d_max);
+    transport->add_passenger(
+        codec_->qm_slot);  // spec §6.2: Q_m, Q_phi ride with the dust
+    if (codec_->qphi_slot >= 0) transport->add_passenger(codec_->qphi_slot);
+    growth_ = g.get();
+    modules.push_back(std::move(g));
+  }
+  // The snow line face: the first face with silicate inside and ice outside (spec §6.3).
+  for (int f = 1; f < n; ++f)
+    if (inside[f - 1] && !inside[f])
+      transport->set_snowline(*layout_, f, f_ice, growth ? codec_->qm_slot : -1);
   modules.push_back(std::move(transport));
   layout_->freeze();
   model_ = std::make_unique<DiskModel>(layout_, std::move(modules));
@@ -137,6 +247,8 @@ std::vector<double> Simulation::initial_state() const {
   for (int i = 0; i < grid_.n_cells(); ++i) {
     y[L.index(i, transport_->sigma_slot())] = sigma_d0_[i];
     if (gas_.evolves()) y[L.index(i, gas_.slot)] = gas_.static_sigma[i];
+    // monomers everywhere (spec §6.4): m = m0 of the cell's species, phi = 1
+    if (growth_) y[L.index(i, codec_->qm_slot)] = sigma_d0_[i] * codec_->x_lo[i];
   }
   return y;
 }
@@ -211,8 +323,18 @@ void Simulation::prepare_output(RunOutput& out) const {
                 "dust mass flow through the faces, positive outward");
   out.add_field("m_dust", 0, "g", "dust mass on the grid");
   out.add_field("m_out_inner", 0, "g", "cumulative dust mass that left through r_in");
+  out.add_field("m_sublimated", 0, "g",
+                "cumulative ice that sublimated at the snow line (spec §6.3)");
   if (gas_.evolves())
-    out.add_field("m_out_gas", 0, "g", "cumulative gas mass accreted through r_in");
+    out.add_field("m_out_gas", 0, "g", "cumulative gas accreted through r_in");
+  if (growth_) {
+    out.add_field("m", n, "g", "mass of the mass-dominating particle");
+    out.add_field("phi", n, "", "filling factor of the mass-dominating particle");
+    out.add_field("a", n, "cm", "radius of the mass-dominating particle");
+    out.add_field("rho_int", n, "g cm^-3", "internal density phi rho0");
+    out.add_field("dv", n, "cm s^-1", "collision speed used for growth (spec §3)");
+    out.add_field("t_grow", n, "yr", "growth time m/|dm/dt|");
+  }
 }
 
 std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
@@ -234,8 +356,28 @@ std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
   f["mdot_d"] = transport_->mass_flow(y);
   f["m_dust"] = {dust_mass_on_grid(y)};
   f["m_out_inner"] = {dust_mass_out(y)};
+  f["m_sublimated"] = {dust_mass_sublimated(y)};
   if (gas_.evolves())
     f["m_out_gas"] = {y[L.global_index(viscous_->m_out_slot())] * viscous_->mass_unit()};
+  if (growth_) {
+    std::vector<double> m(n), phi(n), a(n), rho(n), dv(n), tg(n);
+    for (int i = 0; i < n; ++i) {
+      const double* yc = &y[L.index(i, 0)];
+      const auto r = growth_->rates(i, y);
+      m[i] = codec_->mass(i, yc);
+      phi[i] = codec_->phi(yc);
+      a[i] = r.a;
+      rho[i] = phi[i] * species_[i].rho0;
+      dv[i] = r.dv;
+      tg[i] = m[i] / std::max(std::abs(r.dm_dt), 1e-300) / kYr;
+    }
+    f["m"] = std::move(m);
+    f["phi"] = std::move(phi);
+    f["a"] = std::move(a);
+    f["rho_int"] = std::move(rho);
+    f["dv"] = std::move(dv);
+    f["t_grow"] = std::move(tg);
+  }
   return f;
 }
 
@@ -248,6 +390,11 @@ double Simulation::dust_mass_on_grid(std::span<const double> y) const {
 
 double Simulation::dust_mass_out(std::span<const double> y) const {
   return y[layout_->global_index(transport_->m_out_slot())] * transport_->mass_unit();
+}
+
+double Simulation::dust_mass_sublimated(std::span<const double> y) const {
+  const int g = transport_->sublimated_slot();
+  return g < 0 ? 0.0 : y[layout_->global_index(g)] * transport_->mass_unit();
 }
 
 std::string Simulation::summary() const {
@@ -267,6 +414,10 @@ std::string Simulation::summary() const {
   for (const auto& m : model_->modules()) s << " " << m->name();
   s << "\nJacobian: " << model_->pattern().nnz() << " structural non-zeros\n";
   s << "initial dust mass: " << dust_mass0_ / units::kMearth << " M_earth\n";
+  if (growth_) {  // spec §0: the contact mechanics behind the collision parameters
+    s << physics::contact_summary("ice", material(cfg_, "ice")) << "\n";
+    s << physics::contact_summary("silicate", material(cfg_, "sil")) << "\n";
+  }
   return s.str();
 }
 

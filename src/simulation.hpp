@@ -22,10 +22,22 @@ class RunOutput;
 class StokesModel;
 class DustTransport;
 class ViscousGas;
+class PorousGrowth;
+class CellGas;
+struct ParticleCodec;
+namespace physics {
+struct Species;
+struct GrowthOptions;
+}  // namespace physics
 
 //! Cross-key checks of a loaded scene (r_in < r_out, output times, ...): throws
 //! ConfigError naming the key. Call before anything is allocated or written.
 void validate_scene(const Config& cfg);
+
+//! The monomer species "ice" or "sil" of the scene (keys material.*, spec §0).
+physics::Species species_from_config(const Config& cfg, const std::string& sp);
+//! The growth-model switches and parameters of the scene (spec §3-§5).
+physics::GrowthOptions growth_options_from_config(const Config& cfg);
 
 class Simulation {
  public:
@@ -38,6 +50,8 @@ class Simulation {
   DiskModel& model() { return *model_; }
   const DiskModel& model() const { return *model_; }
   const DustTransport& transport() const { return *transport_; }
+  //! The growth module, or null when growth is off.
+  const PorousGrowth* growth() const { return growth_; }
 
   std::vector<double> initial_state() const;
   IntegratorOptions integrator_options() const;
@@ -50,9 +64,10 @@ class Simulation {
   std::map<std::string, std::vector<double>> snapshot_fields(
       std::span<const double> y) const;
 
-  double dust_mass_on_grid(std::span<const double> y) const;  //!< [g]
-  double dust_mass_out(std::span<const double> y) const;      //!< through r_in [g]
-  double initial_dust_mass() const { return dust_mass0_; }    //!< [g]
+  double dust_mass_on_grid(std::span<const double> y) const;     //!< [g]
+  double dust_mass_out(std::span<const double> y) const;         //!< through r_in [g]
+  double dust_mass_sublimated(std::span<const double> y) const;  //!< at the snow line [g]
+  double initial_dust_mass() const { return dust_mass0_; }       //!< [g]
   //! One-paragraph summary for `panoptic check` and the run header.
   std::string summary() const;
 
@@ -65,6 +80,11 @@ class Simulation {
   std::shared_ptr<StateLayout> layout_;
   const DustTransport* transport_ = nullptr;
   const ViscousGas* viscous_ = nullptr;
+  // Growth model (growth.enabled): species per cell, the local gas, the state decoder.
+  std::vector<physics::Species> species_;
+  std::unique_ptr<CellGas> cell_gas_;
+  std::unique_ptr<ParticleCodec> codec_;
+  const PorousGrowth* growth_ = nullptr;
   std::unique_ptr<DiskModel> model_;
   std::vector<double> sigma_d0_;
   double sigma_scale_ = 1.0, dust_mass0_ = 0.0;

@@ -25,7 +25,9 @@ int main(int argc, char** argv) {
   std::printf("%8s %8s %8s %8s %12s %16s\n", "N", "steps", "RHS", "Jac", "wall [s]",
               "us/(cell step)");
   for (int n : {100, 300, 1000, 3000, 10000}) {
-    const std::vector<std::string> sets{"grid.n_cells=" + std::to_string(n)};
+    const std::vector<std::string> sets{"grid.n_cells=" + std::to_string(n),
+                                        "growth.enabled=false", "porosity.enabled=false",
+                                        "transport.St=0.01"};
     const Config cfg = load_scene(scene, sets);
     std::vector<double> walls;
     SolverStats stats;

@@ -1,0 +1,181 @@
+#pragma once
+//! Local growth and filling-factor rates of the mass-dominating particle of one cell: the
+//! semi-analytical porous coagulation model (spec §4, §5; Krijt et al. 2016 built on
+//! Okuzumi et al. 2012, Kataoka et al. 2013, Krijt et al. 2015). Pure functions,
+//! templated on the scalar type so that the cell Jacobian is exact (src/autodiff.hpp).
+//!
+//!   dm/dt = f_grow 2 sqrt(pi) a^2 dv Sigma_d / h_d  x  [erosion, fragmentation,
+//!   bouncing] d ln phi/dt = s(E_imp, drag regime, St) (d ln m/dt)_+  +  softplus_k(ln
+//!   phi_floor -
+//!                 ln phi) / t_relax,   phi_floor = max(phi_gas, phi_grav)  (spec §4.4)
+#include <cmath>
+
+#include "physics/local_gas.hpp"
+#include "physics/particle.hpp"
+#include "physics/relative_velocity.hpp"
+#include "src/autodiff.hpp"
+#include "src/units.hpp"
+
+namespace panoptic::physics {
+
+//! Monomer species of a cell (ice outside the snow line, silicate inside; spec §1.7).
+struct Species {
+  double a0 = 1e-5;     //!< monomer radius [cm]
+  double rho0 = 1.4;    //!< monomer density [g cm^-3]
+  double m0 = 0.0;      //!< monomer mass [g]
+  double e_roll = 0.0;  //!< rolling energy [erg] (spec §0)
+  double v_frag = 6e3;  //!< fragmentation speed [cm s^-1] (spec §5.3)
+};
+
+enum class ErosionModel { kNone, kHalt, kBalance };
+
+//! Switches and parameters of the growth model (scene tables growth, porosity, erosion,
+//! fragmentation, bouncing). Speeds cgs.
+struct GrowthOptions {
+  double f_grow = 1.0;  //!< growth-rate multiplier (spec §4.1)
+  double eps = 0.5;     //!< partner size ratio (spec §3)
+  DragLaw drag = DragLaw::kStokesRe;
+  double st_max = 1e4;   //!< soft cap of St: growth switched off smoothly above
+  bool porosity = true;  //!< evolve phi; off: phi = 1
+  double s_hs = -0.58;   //!< hit-and-stick slope (spec §4.3)
+  double b = 0.15;       //!< compression threshold factor (spec §4.2)
+  double phi_max = 0.5;  //!< spec §4.3
+  bool gas_compaction = true;
+  bool self_gravity = true;
+  ErosionModel erosion = ErosionModel::kNone;
+  double v_eros = 4e3;    //!< [cm s^-1] (spec §5.1)
+  double w_eros = 0.01;   //!< switch width (spec §5.2 has 0.05; see scene_keys.cpp)
+  double f_s = 0.1;       //!< E2: small-projectile mass fraction
+  double eps_eros = 1.0;  //!< E2: eroded mass per projectile mass
+  double st_small = 0.0;  //!< projectile St; 0 = a monomer
+  bool fragmentation = false;
+  bool bouncing = false;
+  double phi_bounce = 0.3;
+};
+
+//! Softplus with sharpness k: ln(1 + e^(k z))/k, = z for k z >> 1, -> 0 for k z << -1.
+template <class T>
+T softplus(const T& z, double k) {
+  using std::exp;
+  using std::log;
+  const double kz = k * value_of(z);
+  if (kz > 30.0) return z;
+  return log(1.0 + exp(k * z)) / k;
+}
+
+//! Smooth positive part of x (scale-free: exact away from a band of width `delta`).
+template <class T>
+T positive_part(const T& x, double delta) {
+  using std::sqrt;
+  return 0.5 * (x + sqrt(x * x + delta * delta));
+}
+
+//! Everything the rates of one cell produce, also used for output.
+template <class T>
+struct ParticleRates {
+  T a;          //!< particle radius [cm]
+  T St;         //!< Stokes number
+  T h_d;        //!< dust scale height [cm]
+  T dv;         //!< collision speed with the partner at eps St [cm s^-1]
+  T dv_ls;      //!< speed against small projectiles [cm s^-1] (erosion on)
+  T dm_dt;      //!< [g s^-1]
+  T dlnm_dt;    //!< [s^-1]
+  T dlnphi_dt;  //!< [s^-1]
+};
+
+//! Stokes number of the small projectiles: fixed, or that of a compact monomer.
+inline double small_projectile_st(const GrowthOptions& o, const Species& sp,
+                                  const LocalGas& gas) {
+  if (o.st_small > 0.0) return o.st_small;
+  return stokes_number(sp.m0, 1.0, sp.rho0, gas, o.drag);
+}
+
+//! The rates of the mass-dominating particle (m [g], phi, Stokes number St from
+//! stokes_number(), spec §2) in a cell with dust surface density sigma_d [g cm^-2].
+template <class T>
+ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, const T& St,
+                                const LocalGas& gas, const Species& sp,
+                                const GrowthOptions& o) {
+  using std::pow;
+  using std::sqrt;
+  using units::kPi;
+  ParticleRates<T> r;
+  r.a = radius(m, phi, sp.rho0);  // spec §2
+  r.St = St;
+  r.h_d = dust_scale_height(r.St, gas);  // spec §2
+  r.dv = dv_pair(r.St, m, gas, o.eps);   // spec §3
+  // spec §4.1 (Okuzumi et al. 2012 single-size form): sigma dv rho_d / sqrt(2) with the
+  // vertical average over Gaussian layers of equal height.
+  const T dm_coag = o.f_grow * 2.0 * sqrt(kPi) * r.a * r.a * r.dv * sigma_d / r.h_d;
+  T dm = dm_coag;
+  r.dv_ls = T(0.0);
+  if (o.erosion != ErosionModel::kNone) {
+    const double st_s = small_projectile_st(o, sp, gas);
+    r.dv_ls = dv_small_projectile(r.St, m, st_s, sp.m0, gas);
+    // spec §5.2: S(x) = 1/2 [1 - tanh((x - 1)/w)], x = dv_ls / v_eros
+    using std::tanh;
+    const T s = 0.5 * (1.0 - tanh((r.dv_ls / o.v_eros - 1.0) / o.w_eros));
+    if (o.erosion == ErosionModel::kHalt) {  // E1: growth halts where dv_ls = v_eros
+      dm = dm_coag * s;
+    } else {  // E2: rate balance with an implicit reservoir of small projectiles
+      const double h_s = value_of(dust_scale_height(T(st_s), gas));
+      const T h_bar = sqrt(r.h_d * r.h_d + h_s * h_s) / sqrt(2.0);
+      dm = (1.0 - o.f_s) * dm_coag + o.f_s * 2.0 * sqrt(kPi) * r.a * r.a * r.dv_ls *
+                                         sigma_d / h_bar *
+                                         (1.0 - (1.0 + o.eps_eros) * (1.0 - s));
+    }
+  }
+  if (o.fragmentation) {  // spec §5.3: growth turns into loss above v_frag, smoothly
+    const T dv2 = r.dv * r.dv;
+    dm = dm * (1.0 - 2.0 * dv2 / (dv2 + sp.v_frag * sp.v_frag));
+  }
+  if (o.bouncing)  // spec §5.3: compact aggregates bounce (p_stick -> 0 above phi_bounce)
+    dm = dm * (1.0 - log_step(phi, o.phi_bounce, 0.05));
+  dm = dm * (1.0 - log_step(r.St, o.st_max, 0.1));  // soft cap of the particle size
+  r.dm_dt = dm;
+  r.dlnm_dt = dm / m;
+
+  r.dlnphi_dt = T(0.0);
+  if (!o.porosity) return r;
+  // spec §4.2: E_imp = (1/2)(m/2) dv^2 against the threshold 3 b E_roll
+  const T e_imp = 0.25 * m * r.dv * r.dv;
+  const T w_comp = log_step(e_imp, 3.0 * o.b * sp.e_roll, 0.1);
+  // spec §4.3 compression slopes: Epstein St < 1: -1/8; Stokes St < 1: 0; St >= 1: -1/5
+  const T w_stokes = log_step(knudsen_ratio(r.a, gas), 1.0, 0.1);
+  const T w_heavy = log_step(r.St, 1.0, 0.1);
+  const T s_comp = (1.0 - w_heavy) * ((1.0 - w_stokes) * (-0.125)) + w_heavy * (-0.2);
+  const T slope = (1.0 - w_comp) * o.s_hs + w_comp * s_comp;
+  // growth only (spec §4.3: applied while dm/dt > 0)
+  r.dlnphi_dt = slope * positive_part<T>(r.dlnm_dt, 1e-30);
+
+  if (o.gas_compaction || o.self_gravity) {
+    using std::log;
+    T floor = T(0.0);
+    const T nmono = m / sp.m0;
+    if (o.gas_compaction) {  // spec §4.3, Kataoka et al. 2013b: P_gas = P_c
+      const T dv_pg = gas_drift_speed(r.St, gas);
+      const T phi_gas =
+          pow(sp.a0 * sp.m0 * dv_pg * gas.omega_k / (kPi * sp.e_roll * r.St), 3.0 / 7.0) *
+          pow(nmono, 1.0 / 7.0);
+      floor = phi_gas;
+    }
+    if (o.self_gravity) {  // spec §4.3, Kataoka et al. 2013b: P_grav = P_c
+      const double c =
+          std::pow(units::kG * sp.m0 * sp.m0 / (kPi * sp.a0 * sp.e_roll), 0.6);
+      const T phi_grav = c * pow(nmono, 0.4);
+      floor = o.gas_compaction ? soft_max(floor, phi_grav) : phi_grav;
+    }
+    floor = soft_min(floor, T(o.phi_max));
+    // spec §4.4: relax up to the floor on t_relax = 0.01 min(t_grow, 1/Omega)
+    const T rate_grow = positive_part<T>(r.dlnm_dt, 1e-30) + 1e-30;
+    const T t_grow = 1.0 / rate_grow;
+    const T t_relax = 0.01 * soft_min(t_grow, T(1.0 / gas.omega_k));
+    // softplus sharpness 100: below the floor by z the push is e^(-100 z)-small, so phi
+    // follows max(phi_dyn, floor) to a few per cent (k = 1 or 10 leaks: phi would sit
+    // a factor ~2 above the floor wherever t_relax << t_grow).
+    r.dlnphi_dt += softplus<T>(log(floor) - log(phi), 100.0) / t_relax;
+  }
+  return r;
+}
+
+}  // namespace panoptic::physics

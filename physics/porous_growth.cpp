@@ -1,0 +1,164 @@
+#include "physics/porous_growth.hpp"
+
+#include <cmath>
+
+namespace panoptic {
+
+using physics::LocalGas;
+
+namespace {
+// Sharpness of the soft clamps of ln m and ln(1/phi): at the bound the value is shifted
+// by ln 2/k = 0.007 (phi = 0.993 for a monomer), invisible beyond 0.05 from it.
+constexpr double kClampSharpness = 100.0;
+}  // namespace
+
+template <class T>
+T ParticleCodec::ln_mass_ratio(int cell, const T* yc) const {
+  const T& sigma = yc[sigma_slot];
+  const T x = yc[qm_slot] * sigma / (sigma * sigma + eps_sigma * eps_sigma);
+  // soft clamp to [x_lo, x_max]: exact inside, smooth at the edges
+  const T above = x_lo[cell] + physics::softplus<T>(x - x_lo[cell], kClampSharpness);
+  return above - physics::softplus<T>(above - x_max, kClampSharpness);
+}
+
+template <class T>
+T ParticleCodec::mass(int cell, const T* yc) const {
+  using std::exp;
+  return m_ref * exp(ln_mass_ratio(cell, yc));
+}
+
+template <class T>
+T ParticleCodec::phi(const T* yc) const {
+  using std::exp;
+  if (qphi_slot < 0) return T(1.0);
+  const T& sigma = yc[sigma_slot];
+  const T y = yc[qphi_slot] * sigma / (sigma * sigma + eps_sigma * eps_sigma);
+  // 1e-10 <= phi <= 1: soft clamps of y = ln(1/phi) to [0, y_max]
+  const T y_pos = physics::softplus<T>(y, kClampSharpness);
+  return exp(-(y_pos - physics::softplus<T>(y_pos - y_max, kClampSharpness)));
+}
+
+// Used by the engine for output (double) and by the Jacobians (AD).
+template double ParticleCodec::ln_mass_ratio<double>(int, const double*) const;
+template double ParticleCodec::mass<double>(int, const double*) const;
+template double ParticleCodec::phi<double>(const double*) const;
+template AD ParticleCodec::mass<AD>(int, const AD*) const;
+template AD ParticleCodec::phi<AD>(const AD*) const;
+
+LocalGas CellGas::scaled(int cell, double sigma_g) const {
+  // Density-dependent quantities follow the evolving Sigma_g (spec §1.3, §1.6); the
+  // pressure gradient (eta) stays that of the initial gas.
+  LocalGas g = initial_[cell];
+  const double ratio = sigma_g / g.sigma_g;
+  g.sigma_g *= ratio;
+  g.rho_g *= ratio;
+  g.mfp /= ratio;
+  g.nu_mol /= ratio;
+  return g;
+}
+
+void GrowthStokes::key_of(const double* yc, double* key) const {
+  key[0] = yc[codec_.sigma_slot];
+  key[1] = yc[codec_.qm_slot];
+  key[2] = codec_.qphi_slot >= 0 ? yc[codec_.qphi_slot] : 0.0;
+  key[3] = gas_.evolves_slot() >= 0 ? yc[gas_.evolves_slot()] : 0.0;
+}
+
+double GrowthStokes::St(int cell, const double* yc) const {
+  if (cache_st_.empty()) {
+    cache_st_.assign(species_.size(), 0.0);
+    cache_key_.assign(species_.size(), {-1.0, -1.0, -1.0, -1.0});
+  }
+  std::array<double, kKey> key;
+  key_of(yc, key.data());
+  if (key == cache_key_[cell]) return cache_st_[cell];
+  const double st = physics::stokes_number(codec_.mass(cell, yc), codec_.phi(yc),
+                                           species_[cell].rho0, gas_.at(cell, yc), law_);
+  cache_key_[cell] = key;
+  cache_st_[cell] = st;
+  return st;
+}
+
+AD GrowthStokes::St(int cell, const AD* yc) const {
+  return physics::stokes_number(codec_.mass(cell, yc), codec_.phi(yc),
+                                species_[cell].rho0, gas_.at(cell, yc), law_);
+}
+
+PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const CellGas& gas,
+                           const StokesModel& stokes,
+                           const std::vector<physics::Species>& species,
+                           physics::GrowthOptions options, double sigma_scale)
+    : layout_(layout),
+      codec_(codec),
+      gas_(gas),
+      stokes_(stokes),
+      species_(species),
+      opt_(options) {
+  codec.qm_slot =
+      layout.add_cell_var({"q_m", "g cm^-2",
+                           "log-moment Sigma_d ln(m/m_ref) of the particle mass "
+                           "(spec §6.2)",
+                           sigma_scale, false});
+  if (opt_.porosity)
+    codec.qphi_slot = layout.add_cell_var(
+        {"q_phi", "g cm^-2",
+         "log-moment Sigma_d ln(1/phi) of the filling factor (spec §6.2)", sigma_scale,
+         false});
+}
+
+template <class T>
+void PorousGrowth::cell_sources(int cell, const T* yc, T& dqm, T& dqphi) const {
+  const LocalGas g = gas_.at(cell, yc);
+  const T& sigma = yc[codec_.sigma_slot];
+  const T st = stokes_.St(cell, yc);
+  const auto r = physics::particle_rates(sigma, codec_.mass(cell, yc), codec_.phi(yc), st,
+                                         g, species_[cell], opt_);
+  dqm = sigma * r.dlnm_dt;       // spec §6.2
+  dqphi = -sigma * r.dlnphi_dt;  // spec §6.2
+}
+
+void PorousGrowth::declare_pattern(PatternBuilder& p) const {
+  const int nv = layout_.n_cell_vars();
+  for (int i = 0; i < layout_.n_cells(); ++i)
+    for (int row : {codec_.qm_slot, codec_.qphi_slot}) {
+      if (row < 0) continue;
+      for (int j = 0; j < nv; ++j) p.add(layout_.index(i, row), layout_.index(i, j));
+    }
+}
+
+void PorousGrowth::add_rhs(double, std::span<const double> y,
+                           std::span<double> ydot) const {
+  for (int i = 0; i < layout_.n_cells(); ++i) {
+    double dqm = 0.0, dqphi = 0.0;
+    cell_sources(i, &y[layout_.index(i, 0)], dqm, dqphi);
+    ydot[layout_.index(i, codec_.qm_slot)] += dqm;
+    if (codec_.qphi_slot >= 0) ydot[layout_.index(i, codec_.qphi_slot)] += dqphi;
+  }
+}
+
+void PorousGrowth::add_jacobian(double, std::span<const double> y,
+                                JacobianValues& jac) const {
+  const int nv = layout_.n_cell_vars();
+  AD yc[kMaxLocalDerivs];
+  for (int i = 0; i < layout_.n_cells(); ++i) {
+    for (int j = 0; j < nv; ++j) yc[j] = ad_seed(y[layout_.index(i, j)], j);
+    AD dqm, dqphi;
+    cell_sources(i, yc, dqm, dqphi);
+    for (const auto& [slot, val] :
+         {std::pair{codec_.qm_slot, &dqm}, {codec_.qphi_slot, &dqphi}}) {
+      if (slot < 0) continue;
+      for (int j = 0; j < nv; ++j)
+        jac.add(layout_.index(i, slot), layout_.index(i, j), val->derivatives()[j]);
+    }
+  }
+}
+
+physics::ParticleRates<double> PorousGrowth::rates(int cell,
+                                                   std::span<const double> y) const {
+  const double* yc = &y[layout_.index(cell, 0)];
+  return physics::particle_rates(yc[codec_.sigma_slot], codec_.mass(cell, yc),
+                                 codec_.phi(yc), stokes_.St(cell, yc), gas_.at(cell, yc),
+                                 species_[cell], opt_);
+}
+
+}  // namespace panoptic

@@ -1,0 +1,119 @@
+#pragma once
+//! The porous growth model on the grid (spec §4-§6.2): the mass m and filling factor phi
+//! of the mass-dominating particle of every cell, carried as the conservative
+//! log-moments Q_m = Sigma_d ln(m/m_ref) and Q_phi = Sigma_d ln(1/phi) (spec §6.2). Their
+//! transport is the dust transport's (they are its passengers); this module adds the
+//! local sources
+//!   dQ_m/dt   = Sigma_d d ln m/dt,      dQ_phi/dt = -Sigma_d d ln phi/dt,
+//! with the rates of physics/growth_rates.hpp. Cell Jacobian blocks: exact, by AD.
+//! Owns Q_m (growth.enabled) and Q_phi (porosity.enabled).
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "disk/gas_column.hpp"
+#include "physics/growth_rates.hpp"
+#include "physics/stokes_model.hpp"
+#include "src/physics_module.hpp"
+#include "src/state_layout.hpp"
+
+namespace panoptic {
+
+//! Reads m and phi of a cell from its state (Sigma_d, Q_m, Q_phi), safely: where Sigma_d
+//! is near zero the ratios Q/Sigma_d are dominated by integration error, so they are
+//! taken as Q Sigma/(Sigma^2 + eps^2) (-> monomers when there is no dust) and softly
+//! clamped to m_species_0 <= m <= m_ref e^x_max and 1e-10 <= phi <= 1. The log-moments
+//! themselves carry no positivity constraint: the clamps keep every decoded value
+//! physical, so CVODE need not reject steps for them.
+struct ParticleCodec {
+  int sigma_slot = -1, qm_slot = -1, qphi_slot = -1;
+  double m_ref = 0.0;         //!< mass unit of Q_m [g]
+  double eps_sigma = 1e-300;  //!< Sigma_d below which the dust counts as monomers
+  double x_max = 120.0;       //!< largest ln(m/m_ref)
+  double y_max = 23.0;        //!< largest ln(1/phi): phi >= 1e-10
+  std::vector<double> x_lo;   //!< per cell: ln(m0_species/m_ref)
+
+  template <class T>
+  T ln_mass_ratio(int cell, const T* yc) const;  //!< ln(m/m_ref)
+  template <class T>
+  T mass(int cell, const T* yc) const;  //!< m [g]
+  template <class T>
+  T phi(const T* yc) const;  //!< filling factor
+};
+
+//! The local gas of every cell for the particle laws; refreshed from the state where the
+//! gas evolves (density, mean free path; the pressure gradient stays that of the initial
+//! gas: an approximation, see the note in porous_growth.cpp).
+class CellGas {
+ public:
+  CellGas(std::vector<physics::LocalGas> initial, const GasColumn& gas)
+      : initial_(std::move(initial)), gas_(gas) {}
+  //! The gas of `cell` whose state is `yc` (double or AD: the gas is read at the value).
+  template <class T>
+  physics::LocalGas at(int cell, const T* yc) const {
+    if (!gas_.evolves()) return initial_[cell];
+    return scaled(cell, value_of(yc[gas_.slot]));
+  }
+  const physics::LocalGas& initial(int cell) const { return initial_[cell]; }
+  //! Slot of Sigma_g in the cell state, or -1 for static gas.
+  int evolves_slot() const { return gas_.slot; }
+
+ private:
+  physics::LocalGas scaled(int cell, double sigma_g) const;
+  std::vector<physics::LocalGas> initial_;
+  const GasColumn& gas_;
+};
+
+//! St of the particles in a cell from its state (spec §2).
+class GrowthStokes : public StokesModel {
+ public:
+  GrowthStokes(const ParticleCodec& codec, const CellGas& gas,
+               const std::vector<physics::Species>& species, physics::DragLaw law)
+      : codec_(codec), gas_(gas), species_(species), law_(law) {}
+  //! Cached per cell: within one RHS evaluation the transport asks for each cell's St
+  //! twice and the growth rates once; the cache is keyed by the cell's state values.
+  double St(int cell, const double* ycell) const override;
+  AD St(int cell, const AD* ycell) const override;
+
+ private:
+  static constexpr int kKey = 4;
+  void key_of(const double* yc, double* key) const;
+  mutable std::vector<std::array<double, kKey>> cache_key_;
+  mutable std::vector<double> cache_st_;
+  const ParticleCodec& codec_;
+  const CellGas& gas_;
+  const std::vector<physics::Species>& species_;
+  physics::DragLaw law_;
+};
+
+class PorousGrowth : public PhysicsModule {
+ public:
+  //! Registers Q_m and, with porosity, Q_phi; fills their slots into `codec`.
+  PorousGrowth(StateLayout& layout, ParticleCodec& codec, const CellGas& gas,
+               const StokesModel& stokes, const std::vector<physics::Species>& species,
+               physics::GrowthOptions options, double sigma_scale);
+
+  std::string_view name() const override { return "porous_growth"; }
+  void declare_pattern(PatternBuilder& pattern) const override;
+  void add_rhs(double t, std::span<const double> y,
+               std::span<double> ydot) const override;
+  void add_jacobian(double t, std::span<const double> y,
+                    JacobianValues& jac) const override;
+
+  //! The rates of cell `cell` at state y, for output and tests.
+  physics::ParticleRates<double> rates(int cell, std::span<const double> y) const;
+  const physics::GrowthOptions& options() const { return opt_; }
+
+ private:
+  template <class T>
+  void cell_sources(int cell, const T* yc, T& dqm, T& dqphi) const;
+
+  const StateLayout& layout_;
+  const ParticleCodec& codec_;
+  const CellGas& gas_;
+  const StokesModel& stokes_;
+  const std::vector<physics::Species>& species_;
+  physics::GrowthOptions opt_;
+};
+
+}  // namespace panoptic
