@@ -76,6 +76,19 @@ void DustTransport::set_snowline(StateLayout& layout, int face, double f_ice,
        false});
 }
 
+int DustTransport::add_monitor(StateLayout& layout, int face) {
+  if (monitor_slot_.empty()) monitor_slot_.assign(grid_.n_cells(), -1);
+  if (monitor_slot_[face] >= 0) return monitor_slot_[face];
+  const double r_out = grid_.r_f(grid_.n_cells());
+  monitor_slot_[face] = layout.add_global_var(
+      {"m_through_" + std::to_string(face), "initial dust mass",
+       "dust mass that crossed a face inward (pebble flux, spec §8), "
+       "in units of the initial dust mass on the grid",
+       layout.cell_var(slot_).abs_scale * units::kPi * r_out * r_out / mass_unit_,
+       false});
+  return monitor_slot_[face];
+}
+
 template <class T>
 void DustTransport::received_flows(int f, const T* flows, T* received,
                                    T& sublimated) const {
@@ -165,6 +178,8 @@ void DustTransport::declare_pattern(PatternBuilder& p) const {
     }
     if (f == 0) rows.push_back(layout_.global_index(g_out_));
     if (f == snow_face_) rows.push_back(layout_.global_index(g_sub_));
+    if (!monitor_slot_.empty() && monitor_slot_[f] >= 0)
+      rows.push_back(layout_.global_index(monitor_slot_[f]));
     for (long row : rows)
       for (int j = 0; j < nv; ++j) {
         p.add(row, layout_.index(a, j));
@@ -189,6 +204,8 @@ void DustTransport::add_rhs(double, std::span<const double> y,
     }
     if (f == 0) ydot[layout_.global_index(g_out_)] -= flows[0] / mass_unit_;
     if (f == snow_face_) ydot[layout_.global_index(g_sub_)] -= sublimated / mass_unit_;
+    if (!monitor_slot_.empty() && monitor_slot_[f] >= 0)
+      ydot[layout_.global_index(monitor_slot_[f])] -= flows[0] / mass_unit_;
   }
 }
 
@@ -221,6 +238,11 @@ void DustTransport::add_jacobian(double, std::span<const double> y,
           jac.add(layout_.global_index(g_out_), column(j), -d[j] / mass_unit_);
       }
     }
+    if (!monitor_slot_.empty() && monitor_slot_[f] >= 0)
+      for (int j = 0; j < nloc; ++j)
+        if (flows[0].derivatives()[j] != 0.0)
+          jac.add(layout_.global_index(monitor_slot_[f]), column(j),
+                  -flows[0].derivatives()[j] / mass_unit_);
     if (f == snow_face_)
       for (int j = 0; j < nloc; ++j)
         if (sublimated.derivatives()[j] != 0.0)

@@ -53,6 +53,11 @@ class DustTransport : public PhysicsModule {
   void set_snowline(StateLayout& layout, int face, double f_ice, int qm_slot);
   int sublimated_slot() const { return g_sub_; }
 
+  //! Records the cumulative dust mass that crosses face `face` inward (spec §8, pebble
+  //! flux) in a new global variable, in units of mass_unit(); returns its global slot.
+  //! Face 0 is r_in, already booked as m_out_dust. Call before set-up ends.
+  int add_monitor(StateLayout& layout, int face);
+
   std::string_view name() const override { return "dust_transport"; }
   void declare_pattern(PatternBuilder& pattern) const override;
   void add_rhs(double t, std::span<const double> y,
@@ -91,6 +96,8 @@ class DustTransport : public PhysicsModule {
   double mass_unit_ = 1.0;
   std::vector<int> transported_;
   int snow_face_ = -1, g_sub_ = -1, snow_qm_slot_ = -1;
+  std::vector<int>
+      monitor_slot_;  //!< per face: global slot of its cumulative flow, or -1
   double f_ice_ = 0.0;
   // Per face (0..n-1): 2 pi r_f, centre spacing, gas diffusivity, (H/r)^2 v_K, and the
   // static eta v_K (used when the gas does not evolve).

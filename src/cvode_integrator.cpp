@@ -44,8 +44,10 @@ extern "C" int jac_callback(sunrealtype t, N_Vector y, N_Vector, SUNMatrix J, vo
 
 std::string flag_name(int flag) {
   char* name = CVodeGetReturnFlagName(flag);
-  std::string s = name ? name : "CV_UNKNOWN";
+  std::string s = name ? name : "NONE";
   std::free(name);
+  if (s == "NONE") s = "CVODE flag " + std::to_string(flag);
+  if (flag == CV_CONSTR_FAIL) s = "CV_CONSTR_FAIL";
   return s;
 }
 
@@ -74,22 +76,39 @@ CvodeIntegrator::CvodeIntegrator(DiskModel& model, double t0, std::span<const do
   atol_ = N_VNew_Serial(n, ctx);
   std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(nv(y_)));
   std::copy(opt_.atol.begin(), opt_.atol.end(), N_VGetArrayPointer(nv(atol_)));
-
-  cvode_ = CVodeCreate(CV_BDF, ctx);
-  if (cvode_ == nullptr) throw SolverError("CVodeCreate failed");
-  check(CVodeSetErrHandlerFn(cvode_, cvode_error_handler, this), "CVodeSetErrHandlerFn");
-  check(CVodeInit(cvode_, rhs_callback, t0, nv(y_)), "CVodeInit");
-  check(CVodeSVtolerances(cvode_, opt_.rtol, nv(atol_)), "CVodeSVtolerances");
-  check(CVodeSetUserData(cvode_, &model_), "CVodeSetUserData");
   if (!opt_.constraints.empty() &&
       std::any_of(opt_.constraints.begin(), opt_.constraints.end(),
                   [](double c) { return c != 0.0; })) {
     constr_ = N_VNew_Serial(n, ctx);
     std::copy(opt_.constraints.begin(), opt_.constraints.end(),
               N_VGetArrayPointer(nv(constr_)));
-    check(CVodeSetConstraints(cvode_, nv(constr_)), "CVodeSetConstraints");
   }
-  const auto& pattern = model.pattern();
+  clip_to_constraints();
+  create_cvode(t0);
+}
+
+void CvodeIntegrator::clip_to_constraints() {
+  // CVODE accepts steps whose non-negative components dip below zero by less than its
+  // error weights, but a new start rejects any: clip those round-off negatives. Done
+  // at every start, the constructor's too, so that a run restarted from a checkpoint
+  // (which stores the state as integrated) starts from the same bits as the run that
+  // reinitialised there.
+  double* yv = N_VGetArrayPointer(nv(y_));
+  for (std::size_t i = 0; i < opt_.constraints.size(); ++i)
+    if (opt_.constraints[i] > 0.0 && yv[i] < 0.0) yv[i] = 0.0;
+}
+
+void CvodeIntegrator::create_cvode(double t0) {
+  SUNContext ctx = static_cast<SUNContext>(sunctx_);
+  const auto n = static_cast<sunindextype>(model_.layout().size());
+  cvode_ = CVodeCreate(CV_BDF, ctx);
+  if (cvode_ == nullptr) throw SolverError("CVodeCreate failed");
+  check(CVodeSetErrHandlerFn(cvode_, cvode_error_handler, this), "CVodeSetErrHandlerFn");
+  check(CVodeInit(cvode_, rhs_callback, t0, nv(y_)), "CVodeInit");
+  check(CVodeSVtolerances(cvode_, opt_.rtol, nv(atol_)), "CVodeSVtolerances");
+  check(CVodeSetUserData(cvode_, &model_), "CVodeSetUserData");
+  if (constr_) check(CVodeSetConstraints(cvode_, nv(constr_)), "CVodeSetConstraints");
+  const auto& pattern = model_.pattern();
   A_ = SUNSparseMatrix(n, n, pattern.nnz(), CSC_MAT, ctx);
   LS_ = SUNLinSol_KLU(nv(y_), static_cast<SUNMatrix>(A_), ctx);
   if (A_ == nullptr || LS_ == nullptr) throw SolverError("KLU set-up failed");
@@ -103,11 +122,17 @@ CvodeIntegrator::CvodeIntegrator(DiskModel& model, double t0, std::span<const do
   if (opt_.max_dt > 0.0) check(CVodeSetMaxStep(cvode_, opt_.max_dt), "CVodeSetMaxStep");
 }
 
-CvodeIntegrator::~CvodeIntegrator() {
+void CvodeIntegrator::free_cvode() {
   // Reverse order of creation.
   CVodeFree(&cvode_);
   SUNLinSolFree(static_cast<SUNLinearSolver>(LS_));
   SUNMatDestroy(static_cast<SUNMatrix>(A_));
+  LS_ = nullptr;
+  A_ = nullptr;
+}
+
+CvodeIntegrator::~CvodeIntegrator() {
+  free_cvode();
   if (constr_) N_VDestroy(nv(constr_));
   N_VDestroy(nv(atol_));
   N_VDestroy(nv(y_));
@@ -124,6 +149,7 @@ void CvodeIntegrator::advance_to(double t_out,
   while (t_ < t_out) {
     long nst = 0;
     CVodeGetNumSteps(cvode_, &nst);
+    nst += before_.nst;
     if (nst >= opt_.max_steps)
       fail(CV_TOO_MUCH_WORK,
            "the step budget solver.max_steps = " + std::to_string(opt_.max_steps) +
@@ -139,13 +165,32 @@ void CvodeIntegrator::advance_to(double t_out,
 }
 
 void CvodeIntegrator::reinit(double t, std::span<const double> y) {
+  before_ = stats();
+  ++before_.nreinit;
   std::copy(y.begin(), y.end(), N_VGetArrayPointer(nv(y_)));
-  check(CVodeReInit(cvode_, t, nv(y_)), "CVodeReInit");
+  clip_to_constraints();
+  // A new CVODE and KLU rather than CVodeReInit: a restart from a checkpoint builds new
+  // ones, and only the same construction guarantees the same bits whatever state
+  // CVodeReInit may keep (KLU's pivot order, step-size limits). The cost is a few
+  // allocations and one KLU analysis per snapshot.
+  free_cvode();
+  create_cvode(t);
   t_ = t;
-  ++nreinit_;
 }
 
-SolverStats CvodeIntegrator::stats() const {
+void CvodeIntegrator::carry_stats(const SolverStats& before) {
+  before_.nst += before.nst;
+  before_.nfe += before.nfe;
+  before_.nje += before.nje;
+  before_.nsetups += before.nsetups;
+  before_.netf += before.netf;
+  before_.nni += before.nni;
+  before_.nncf += before.nncf;
+  before_.nreinit += before.nreinit;
+  if (before_.h_last == 0.0) before_.h_last = before.h_last;
+}
+
+SolverStats CvodeIntegrator::cvode_counters() const {
   SolverStats s;
   CVodeGetNumSteps(cvode_, &s.nst);
   CVodeGetNumRhsEvals(cvode_, &s.nfe);
@@ -155,7 +200,21 @@ SolverStats CvodeIntegrator::stats() const {
   CVodeGetNumNonlinSolvIters(cvode_, &s.nni);
   CVodeGetNumNonlinSolvConvFails(cvode_, &s.nncf);
   CVodeGetLastStep(cvode_, &s.h_last);
-  s.nreinit = nreinit_;
+  return s;
+}
+
+SolverStats CvodeIntegrator::stats() const {
+  SolverStats s = cvode_counters();
+  s.nst += before_.nst;
+  s.nfe += before_.nfe;
+  s.nje += before_.nje;
+  s.nsetups += before_.nsetups;
+  s.netf += before_.netf;
+  s.nni += before_.nni;
+  s.nncf += before_.nncf;
+  s.nreinit = before_.nreinit;
+  // Right after a reinit CVODE reports no last step: keep the one before.
+  if (s.h_last == 0.0) s.h_last = before_.h_last;
   return s;
 }
 

@@ -45,20 +45,34 @@ class CvodeIntegrator {
   //! message, the model's message and the components with the largest weighted local
   //! error.
   void advance_to(double t_out, const std::function<void(double, long)>& on_step = {});
-  //! Restarts the integrator (order 1, fresh history) from (t, y).
+  //! Restarts the integrator (order 1, fresh history) from (t, y), exactly as a new
+  //! integrator built at (t, y): this is what makes a run restarted from a checkpoint
+  //! bit-for-bit identical to one that reinitialises at the same time.
   void reinit(double t, std::span<const double> y);
+  //! Adds the statistics of the part of the run before a restart, so that stats() and
+  //! the step budget solver.max_steps cover the whole run.
+  void carry_stats(const SolverStats& before);
 
   double time() const { return t_; }
   std::span<const double> state() const;
+  //! Totals of the run: CVODE's counters (reset by every reinit) plus those saved at
+  //! each reinit and carried over from a checkpoint.
   SolverStats stats() const;
 
  private:
   [[noreturn]] void fail(int flag, const std::string& what);
+  //! CVODE's own counters since the last (re)initialisation.
+  SolverStats cvode_counters() const;
+  //! Sets the negative round-off of components constrained to y >= 0 to zero in y_.
+  void clip_to_constraints();
+  //! Creates the CVODE memory, the matrix and KLU at (t0, y_) with the options.
+  void create_cvode(double t0);
+  void free_cvode();
 
   DiskModel& model_;
   IntegratorOptions opt_;
   double t_ = 0.0;
-  long nreinit_ = 0;
+  SolverStats before_;      // totals of the segments before the last (re)initialisation
   void* sunctx_ = nullptr;  // SUNContext (opaque pointer type)
   void* y_ = nullptr;       // N_Vector
   void* atol_ = nullptr;    // N_Vector

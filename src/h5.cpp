@@ -39,8 +39,12 @@ void Handle::reset() {
 
 void quiet_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
-Handle create_file(const std::string& path) {
-  return {ok(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+Handle create_file(const std::string& path, bool checksummed_metadata) {
+  Handle fapl(ok(H5Pcreate(H5P_FILE_ACCESS), "property list"), H5Pclose);
+  if (checksummed_metadata)
+    ok(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
+       "setting the format of", path);
+  return {ok(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()),
              "creating file " + path),
           H5Fclose};
 }
@@ -127,6 +131,38 @@ hsize_t stack_rows(hid_t parent, const std::string& name) {
   return dims[0];
 }
 
+void truncate_stack(hid_t parent, const std::string& name, hsize_t rows) {
+  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
+            H5Dclose);
+  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
+  std::array<hsize_t, 2> dims{0, 0};
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  if (dims[0] == rows) return;
+  dims[0] = rows;
+  ok(H5Dset_extent(ds.get(), dims.data()), "truncating", name);
+}
+
+std::vector<std::string> dataset_names(hid_t group) {
+  H5G_info_t info;
+  ok(H5Gget_info(group, &info), "listing", "group");
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i,
+                                           nullptr, 0, H5P_DEFAULT);
+    if (len < 0) throw IoError("HDF5: listing a group failed");
+    std::string name(static_cast<std::size_t>(len) + 1, '\0');
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+                       name.size(), H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(len));
+    // H5Oopen + H5Iget_type: the same call in every HDF5 API version.
+    const hid_t obj = H5Oopen(group, name.c_str(), H5P_DEFAULT);
+    if (obj < 0) continue;
+    if (H5Iget_type(obj) == H5I_DATASET) names.push_back(name);
+    H5Oclose(obj);
+  }
+  return names;
+}
+
 std::vector<double> read_doubles(hid_t parent, const std::string& name) {
   Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
             H5Dclose);
@@ -190,6 +226,18 @@ double get_attr_double(hid_t obj, const std::string& name) {
   double v = 0.0;
   ok(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &v), "reading attribute", name);
   return v;
+}
+
+long get_attr_long(hid_t obj, const std::string& name) {
+  Handle attr(ok(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "opening attribute " + name),
+              H5Aclose);
+  long v = 0;
+  ok(H5Aread(attr.get(), H5T_NATIVE_LONG, &v), "reading attribute", name);
+  return v;
+}
+
+bool has_attr(hid_t obj, const std::string& name) {
+  return H5Aexists(obj, name.c_str()) > 0;
 }
 
 }  // namespace panoptic::h5

@@ -30,8 +30,10 @@ class Handle {
   Closer closer_ = nullptr;
 };
 
-//! Creates (truncating) or opens an HDF5 file.
-Handle create_file(const std::string& path);
+//! Creates (truncating) or opens an HDF5 file. `checksummed_metadata` selects the
+//! HDF5 1.10 format, whose metadata carries checksums, so that a damaged file is
+//! reported as such instead of read as garbage (checkpoints).
+Handle create_file(const std::string& path, bool checksummed_metadata = false);
 Handle open_file(const std::string& path, bool writable);
 Handle create_group(hid_t parent, const std::string& name);
 Handle open_group(hid_t parent, const std::string& name);
@@ -47,6 +49,11 @@ void create_stack(hid_t parent, const std::string& name, hsize_t width,
 void append_row(hid_t parent, const std::string& name, std::span<const double> row);
 //! Number of rows of a stack.
 hsize_t stack_rows(hid_t parent, const std::string& name);
+//! Cuts a stack to its first `rows` rows (H5Dset_extent), e.g. to drop the snapshots a
+//! restart will write again.
+void truncate_stack(hid_t parent, const std::string& name, hsize_t rows);
+//! Names of the datasets directly in a group, in name order.
+std::vector<std::string> dataset_names(hid_t group);
 //! Reads a whole double dataset (any rank, flattened).
 std::vector<double> read_doubles(hid_t parent, const std::string& name);
 
@@ -55,6 +62,8 @@ void set_attr(hid_t obj, const std::string& name, double value);
 void set_attr(hid_t obj, const std::string& name, long value);
 std::string get_attr_string(hid_t obj, const std::string& name);
 double get_attr_double(hid_t obj, const std::string& name);
+long get_attr_long(hid_t obj, const std::string& name);
+bool has_attr(hid_t obj, const std::string& name);
 
 //! Silences HDF5's own error stack printing (we throw IoError with our own message).
 void quiet_errors();

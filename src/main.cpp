@@ -1,9 +1,13 @@
 // panoptic: dust evolution of a whole protoplanetary disk. The program as a numbered
 // script (Athena++ style):
 //   1 command line -> 2 scene (file < --set overrides), validated before anything is
-//   written -> 3 grid, gas disk, modules, state layout (Simulation) -> 4 output file ->
-//   5 CVODE -> 6 loop over the snapshot times -> 7 solver statistics and mass budget.
-// Exit codes: 0 ok, 2 bad input, 3 solver failure, 4 I/O error, 130 interrupted.
+//   written -> 3 grid, gas disk, modules, state layout (Simulation) -> 4 restart point:
+//   t = 0, or a checkpoint that is whole and that the scene is compatible with -> 5
+//   output file (new, or the checkpoint's run's, continued) -> 6 CVODE -> 7 loop over the
+//   snapshot times, checkpointing at snapshots -> 8 final checkpoint, solver statistics
+//   and mass budget.
+// Exit codes: 0 ok, 2 bad input, 3 solver failure, 4 I/O error, 75 stopped to be
+// restarted (SIGINT, SIGTERM or --max-wall; EX_TEMPFAIL of sysexits.h: "try again").
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -14,14 +18,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "src/checkpoint.hpp"
 #include "src/config.hpp"
 #include "src/cvode_integrator.hpp"
+#include "src/diagnostics.hpp"
 #include "src/error.hpp"
 #include "src/run_output.hpp"
 #include "src/simulation.hpp"
+#include "src/track.hpp"
 #include "src/units.hpp"
 
 namespace fs = std::filesystem;
@@ -29,11 +37,19 @@ using namespace panoptic;
 
 namespace {
 
-std::atomic<int> g_signal{0};
-extern "C" void on_signal(int sig) { g_signal = sig; }
+constexpr int kExitStopped = 75;  // EX_TEMPFAIL: stopped, restart from the checkpoint
 
-struct Interrupted {
-  int signal;
+std::atomic<int> g_signal{0};
+extern "C" void on_signal(int sig) {
+  g_signal = sig;
+  // A second Ctrl-C ends the program at once (the checkpoint on disk stays whole: it is
+  // replaced by rename).
+  std::signal(sig, SIG_DFL);
+}
+
+//! Thrown to stop the run at the next step or snapshot, with why.
+struct Stop {
+  std::string reason;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -70,76 +86,225 @@ class Progress {
   double last_ = 0.0;
 };
 
+struct RunArgs {
+  std::string program;  //!< argv[0], for the restart command we print
+  std::string scene;
+  std::vector<std::string> overrides;
+  std::string output;  //!< -o
+  bool overwrite = false;
+  std::string restart;   //!< --restart CHK.h5
+  std::string max_wall;  //!< --max-wall DURATION
+};
+
 fs::path default_output(const Config& cfg) {
   if (!cfg.str("output.file").empty()) return cfg.str("output.file");
   return fs::path("out") / (cfg.file().stem().string() + ".h5");
 }
 
-void print_budget(const Simulation& sim, std::span<const double> y) {
-  const double m0 = sim.initial_dust_mass();
-  const double grid = sim.dust_mass_on_grid(y), out = sim.dust_mass_out(y);
-  std::printf(
-      "dust budget [M_earth]: on grid %.6g + through r_in %.6g = %.6g; initial %.6g;"
-      " relative error %.2e\n",
-      grid / units::kMearth, out / units::kMearth, (grid + out) / units::kMearth,
-      m0 / units::kMearth, std::abs(grid + out - m0) / m0);
-}
-
-int run(const std::string& scene, const std::vector<std::string>& overrides,
-        const std::string& out_opt, bool overwrite) {
-  // 2 scene
-  const Config cfg = load_scene(scene, overrides);
-  validate_scene(cfg);
-  // 3 model
-  Simulation sim(cfg);
-  const fs::path out_path = out_opt.empty() ? default_output(cfg) : fs::path(out_opt);
-  // 4 output
-  RunOutput out(out_path, overwrite,
+//! A new output file with /grid, /disk and the snapshot fields declared. Checkpoints
+//! left next to it by a run it replaces are removed: they belong to that run.
+RunOutput new_output(const Config& cfg, const Simulation& sim, const fs::path& path,
+                     bool overwrite) {
+  RunOutput out(path, overwrite,
                 {cfg.file().stem().string(), cfg.resolved_toml(), PANOPTIC_GIT_SHA,
                  PANOPTIC_VERSION});
   sim.prepare_output(out);
-  std::printf("panoptic %s: scene %s -> %s\n%s", PANOPTIC_VERSION, scene.c_str(),
-              out_path.c_str(), sim.summary().c_str());
+  const fs::path chk = checkpoint_path(path);
+  std::error_code ec;
+  for (const fs::path& stale : {chk, previous_checkpoint_path(chk)})
+    if (fs::remove(stale, ec))
+      std::printf("removed %s: a checkpoint of the run this output replaces\n",
+                  stale.c_str());
+  return out;
+}
+
+//! The command that continues this run from `chk`, for copy and paste.
+std::string restart_command(const RunArgs& a, const fs::path& chk) {
+  const auto quote = [](const std::string& s) {
+    if (s.find_first_of(" \t\"'$`\\*?[]()<>|;&!#~{}") == std::string::npos) return s;
+    std::string q = "'";
+    for (const char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  };
+  std::string cmd =
+      quote(a.program) + " run " + quote(a.scene) + " --restart " + quote(chk.string());
+  for (const std::string& s : a.overrides) cmd += " --set " + quote(s);
+  if (!a.output.empty()) cmd += " -o " + quote(a.output);
+  return cmd;
+}
+
+void print_budget(const Simulation& sim, std::span<const double> y) {
+  const double m0 = sim.initial_dust_mass();
+  const double grid = sim.dust_mass_on_grid(y), out = sim.dust_mass_out(y);
+  const auto [coag, si] = sim.planetesimal_mass(y);
+  const double sub = sim.dust_mass_sublimated(y);
+  std::printf(
+      "dust budget [M_earth]: on grid %.6g + planetesimals %.6g + through r_in %.6g + "
+      "sublimated %.6g = %.6g; initial %.6g; relative error %.2e\n",
+      grid / units::kMearth, (coag + si) / units::kMearth, out / units::kMearth,
+      sub / units::kMearth, (grid + coag + si + out + sub) / units::kMearth,
+      m0 / units::kMearth, sim.budget_error(y));
+}
+
+int run(const RunArgs& a) {
+  // 2 scene
+  const Config cfg = load_scene(a.scene, a.overrides);
+  validate_scene(cfg);
+  const double max_wall = a.max_wall.empty() ? 0.0 : parse_duration(a.max_wall);
+  // 3 model
+  Simulation sim(cfg);
+  const StateLayout& layout = sim.model().layout();
+  // 4 restart point: a whole checkpoint (else its predecessor), compatible with the
+  // scene; the snapshot times are then those of the scene after the checkpoint's time
+  std::optional<RestartPoint> restart;
+  std::vector<std::string> changed;
+  if (!a.restart.empty()) {
+    restart = load_restart_point(a.restart);
+    if (!restart->fallback_note.empty())
+      std::fprintf(stderr,
+                   "panoptic: %s\npanoptic: restarting from the previous checkpoint %s "
+                   "instead (t = %.6g yr, snapshot %ld)\n",
+                   restart->fallback_note.c_str(), restart->path.c_str(),
+                   restart->chk.t / units::kYr, restart->chk.snapshot_index);
+    changed = check_compatible(restart->chk, restart->path, cfg, layout);
+  }
+  const std::vector<double> times =
+      restart ? times_after_restart(sim.output_times(), restart->chk.t)
+              : sim.output_times();
+  // 5 output: new, or the checkpoint's run's file cut to the checkpoint's snapshots
+  RunOutput out =
+      restart ? continue_output(*restart, a.output, cfg, changed)
+              : new_output(cfg, sim,
+                           a.output.empty() ? default_output(cfg) : fs::path(a.output),
+                           a.overwrite);
+  const fs::path chk_path = checkpoint_path(out.path());
+  std::printf("panoptic %s: scene %s -> %s\n%s", PANOPTIC_VERSION, a.scene.c_str(),
+              out.path().c_str(), sim.summary().c_str());
+  if (restart)
+    std::printf("restart from %s at t = %.6g yr (snapshot %ld)\n", restart->path.c_str(),
+                restart->chk.t / units::kYr, restart->chk.snapshot_index);
   std::fflush(stdout);
-  // 5 integrator
-  const auto times = sim.output_times();
-  const auto y0 = sim.initial_state();
+  // 6 integrator, from the initial state or the checkpoint's (with its statistics)
+  const std::vector<double> y0 = restart ? restart->chk.y : sim.initial_state();
   CvodeIntegrator cvode(sim.model(), times.front(), y0, sim.integrator_options());
-  out.write_snapshot(0.0, sim.snapshot_fields(y0));
-  // 6 snapshots
+  if (restart) cvode.carry_stats(restart->chk.stats);
+  const long index0 = restart ? restart->chk.snapshot_index : 0;
+  const double wall0 = restart ? restart->chk.wall_s : 0.0;
+  const auto start = Clock::now();
+  // What a checkpoint of the snapshot just written holds; `last` is kept in memory so
+  // that a stop between snapshots can checkpoint the last one.
+  const auto record = [&](double t, std::vector<double> y, long index) {
+    return Checkpoint{t,
+                      std::move(y),
+                      layout.signature(),
+                      layout.n_cells(),
+                      index,
+                      cfg.resolved_toml(),
+                      cvode.stats(),
+                      wall0 + seconds_since(start),
+                      fs::absolute(out.path()).string(),
+                      out.run_id(),
+                      PANOPTIC_GIT_SHA,
+                      PANOPTIC_VERSION};
+  };
+  Checkpoint last = record(times.front(), y0, index0);
+  RunDiagnostics diag(sim, out, restart ? times.front() : 0.0);
+  const auto snapshot = [&](double t, std::span<const double> y) {
+    auto fields = sim.snapshot_fields(y);
+    diag.add_snapshot_fields(fields);
+    diag.flush();
+    out.write_snapshot(t / units::kYr, fields);
+  };
+  if (!restart) snapshot(0.0, y0);
+  long checkpointed = -1;  // snapshot index of the checkpoint on disk
+  const auto checkpoint_last = [&] {
+    if (last.snapshot_index == checkpointed) return;
+    write_checkpoint(chk_path, last);
+    checkpointed = last.snapshot_index;
+  };
+  // 7 snapshots: CVODE is reinitialised at each (so a restart is bit for bit); a
+  // checkpoint is written at a snapshot when due; a stop checkpoints the last one
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  const auto start = Clock::now();
+  const bool reinit = cfg.flag("solver.reinit_at_snapshots");
+  CheckpointSchedule schedule(cfg.real("checkpoint.every_wall_s"),
+                              cfg.integer("checkpoint.every_snapshots"), 0.0);
+  const auto stop_if_asked = [&] {
+    if (g_signal != 0) throw Stop{g_signal == SIGINT ? "SIGINT" : "SIGTERM"};
+    if (max_wall > 0.0 && seconds_since(start) >= max_wall)
+      throw Stop{"--max-wall " + a.max_wall};
+  };
   Progress progress(times.back());
   std::string status = "completed";
   int code = 0;
   try {
     for (std::size_t k = 1; k < times.size(); ++k) {
+      const double segment_start = seconds_since(start);
       cvode.advance_to(times[k], [&](double t, long nst) {
-        if (g_signal != 0) throw Interrupted{g_signal};
+        stop_if_asked();
+        diag.on_step(t, cvode.state());
         progress.update(t, nst);
       });
-      out.write_snapshot(times[k] / units::kYr, sim.snapshot_fields(cvode.state()));
+      snapshot(times[k], cvode.state());
+      std::vector<double> y(cvode.state().begin(), cvode.state().end());
+      if (reinit) cvode.reinit(times[k], y);
+      last = record(times[k], std::move(y), index0 + static_cast<long>(k));
+      if (k + 1 == times.size()) break;
+      const double now = seconds_since(start);
+      if (schedule.due(last.snapshot_index, now)) {
+        try {
+          checkpoint_last();
+        } catch (const IoError& e) {
+          std::fprintf(stderr, "panoptic: warning: %s; the run goes on\n", e.what());
+        }
+        schedule.taken(now);
+      }
+      stop_if_asked();
+      // Stop now rather than lose the next segment to the limit: it would take about
+      // as long as this one.
+      if (max_wall > 0.0 && 2.0 * now - segment_start > max_wall)
+        throw Stop{"--max-wall " + a.max_wall +
+                   " (the next snapshot would come too late)"};
     }
-  } catch (const Interrupted& i) {
-    status = "interrupted by signal " + std::to_string(i.signal);
-    code = 130;
+  } catch (const Stop& stop) {
+    progress.done();
+    checkpoint_last();
+    status = "stopped by " + stop.reason + "; restart from " + chk_path.string();
+    code = kExitStopped;
+    std::printf(
+        "stopped by %s at t = %.4g yr; the last snapshot (snapshot %ld, t = %.4g yr) "
+        "is checkpointed in %s\nrestart with: %s\n",
+        stop.reason.c_str(), cvode.time() / units::kYr, last.snapshot_index,
+        last.t / units::kYr, chk_path.c_str(), restart_command(a, chk_path).c_str());
   } catch (const SolverError&) {
     progress.done();
-    out.write_solver(cvode.stats(), seconds_since(start), "failed");
+    out.write_solver(cvode.stats(), wall0 + seconds_since(start), "failed");
+    try {
+      checkpoint_last();
+      std::fprintf(stderr,
+                   "panoptic: the last snapshot (t = %.4g yr) is checkpointed in %s: a "
+                   "restart may change the solver.* settings\n",
+                   last.t / units::kYr, chk_path.c_str());
+    } catch (const IoError&) {
+    }
     throw;
   }
-  progress.done();
-  // 7 statistics
-  const double wall = seconds_since(start);
+  // 8 final checkpoint (a later output.t_end_yr continues from it), statistics, budget
+  if (code == 0) {
+    progress.done();
+    std::fputs(diag.finish(cvode.time(), cvode.state()).c_str(), stdout);
+    checkpoint_last();
+  }
+  const double wall = wall0 + seconds_since(start);
   const SolverStats s = cvode.stats();
   out.write_solver(s, wall, status);
-  std::printf("%s at t = %.4g yr: %zu snapshots in %s\n", status.c_str(),
-              cvode.time() / units::kYr, out.n_snapshots(), out_path.c_str());
+  std::printf("%s at t = %.4g yr: %zu snapshots in %s\n",
+              code == 0 ? "completed" : "stopped", cvode.time() / units::kYr,
+              out.n_snapshots(), out.path().c_str());
   std::printf(
       "solver: %ld steps, %ld RHS, %ld Jacobian evaluations, %ld error-test and %ld "
-      "nonlinear convergence failures, %.3f s wall\n",
-      s.nst, s.nfe, s.nje, s.netf, s.nncf, wall);
+      "nonlinear convergence failures, %ld reinitialisations, %.3f s wall\n",
+      s.nst, s.nfe, s.nje, s.netf, s.nncf, s.nreinit, wall);
   print_budget(sim, cvode.state());
   return code;
 }
@@ -159,6 +324,40 @@ int check(const std::string& scene, const std::vector<std::string>& overrides) {
   return 0;
 }
 
+//! `panoptic track`: one particle along its drift path (spec §13).
+int track(const std::string& scene, const std::vector<std::string>& overrides,
+          double r0_au, double a_stop_cm, double t_max_yr) {
+  const Config cfg = load_scene(scene, overrides);
+  validate_scene(cfg);
+  if (!(r0_au > cfg.real("grid.r_in_au")))
+    throw ConfigError("--r0-au " + std::to_string(r0_au) +
+                      ": must be outside the inner edge grid.r_in_au; start further out");
+  const TrackResult res =
+      track_particle(cfg, r0_au * units::kAu, a_stop_cm, t_max_yr * units::kYr);
+  std::printf("# panoptic track %s: monomer released at %.4g au (%ld CVODE steps)\n",
+              scene.c_str(), r0_au, res.steps);
+  std::printf("# %12s %10s %12s %12s %12s %12s\n", "t [yr]", "r [au]", "m [g]", "phi",
+              "a [cm]", "St");
+  // about 40 rows, log-spaced in time
+  double next = 0.0;
+  for (std::size_t k = 0; k < res.points.size(); ++k) {
+    const TrackPoint& p = res.points[k];
+    if (p.t < next && k + 1 != res.points.size()) continue;
+    std::printf("  %12.5g %10.4g %12.5g %12.5g %12.5g %12.5g\n", p.t / units::kYr,
+                p.r / units::kAu, p.m, p.phi, p.a, p.St);
+    next = std::max(p.t * 1.25, 1.0 * units::kYr);
+  }
+  if (res.reached)
+    std::printf("reached a = %.4g cm at t = %.4g yr, r = %.4g au\n", a_stop_cm,
+                res.at_stop.t / units::kYr, res.at_stop.r / units::kAu);
+  else
+    std::printf(
+        "did not reach a = %.4g cm (last: t = %.4g yr, r = %.4g au, a = %.4g cm)\n",
+        a_stop_cm, res.points.back().t / units::kYr, res.points.back().r / units::kAu,
+        res.points.back().a);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -169,22 +368,47 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("panoptic ") + PANOPTIC_VERSION + " (" +
                                         PANOPTIC_GIT_SHA + ")");
   app.require_subcommand(1);
-  std::string scene, out_opt;
-  std::vector<std::string> overrides;
-  bool overwrite = false;
+  RunArgs args;
+  args.program = argc > 0 ? argv[0] : "panoptic";
+  std::string& scene = args.scene;
+  std::vector<std::string>& overrides = args.overrides;
 
   auto* run_cmd = app.add_subcommand("run", "run a scene and write its HDF5 output");
   run_cmd->add_option("scene", scene, "scene file (TOML)")->required();
   run_cmd->add_option("--set", overrides, "override a scene key: table.key=value")
       ->take_all();
-  run_cmd->add_option("-o,--output", out_opt, "output file (default out/<scene>.h5)");
-  run_cmd->add_flag("--overwrite", overwrite, "replace an existing output file");
+  run_cmd->add_option("-o,--output", args.output,
+                      "output file (default out/<scene>.h5; with --restart: the "
+                      "checkpoint's)");
+  auto* overwrite_opt =
+      run_cmd->add_flag("--overwrite", args.overwrite, "replace an existing output file");
+  run_cmd
+      ->add_option("--restart", args.restart,
+                   "continue the run of this checkpoint (<output>.chk.h5); the output "
+                   "file is continued")
+      ->excludes(overwrite_opt);
+  run_cmd->add_option("--max-wall", args.max_wall,
+                      "stop with a checkpoint (exit code 75) before this wall time, "
+                      "e.g. 90m, 2h, 1h30m, 3600s");
 
   auto* check_cmd = app.add_subcommand(
       "check", "validate a scene and print it resolved, with defaults");
   check_cmd->add_option("scene", scene, "scene file (TOML)")->required();
   check_cmd->add_option("--set", overrides, "override a scene key: table.key=value")
       ->take_all();
+
+  double r0_au = 10.0, a_stop_cm = 1e5, t_max_yr = 1e7;
+  auto* track_cmd = app.add_subcommand(
+      "track",
+      "follow one particle along its drift path with the growth model (spec §13)");
+  track_cmd->add_option("scene", scene, "scene file (TOML)")->required();
+  track_cmd->add_option("--set", overrides, "override a scene key: table.key=value")
+      ->take_all();
+  track_cmd->add_option("--r0-au", r0_au, "release radius [au]")->required();
+  track_cmd->add_option("--a-stop-cm", a_stop_cm, "stop at this particle radius [cm]")
+      ->capture_default_str();
+  track_cmd->add_option("--t-max-yr", t_max_yr, "stop at this time [yr]")
+      ->capture_default_str();
 
   auto* ref_cmd = app.add_subcommand(
       "reference",
@@ -204,8 +428,9 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run_cmd) return run(scene, overrides, out_opt, overwrite);
+    if (*run_cmd) return run(args);
     if (*check_cmd) return check(scene, overrides);
+    if (*track_cmd) return track(scene, overrides, r0_au, a_stop_cm, t_max_yr);
     if (*ref_cmd) {
       std::fputs(reference_toml().c_str(), stdout);
       return 0;

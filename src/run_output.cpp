@@ -1,9 +1,29 @@
 #include "src/run_output.hpp"
 
+#include <array>
+#include <cstdio>
+#include <random>
+
 #include "src/cvode_integrator.hpp"
 #include "src/error.hpp"
 
 namespace panoptic {
+namespace {
+
+// 128 random bits as hex: tells this run's file from any other file of the same name,
+// so a restart never continues a file with a checkpoint of another run.
+std::string new_run_id() {
+  std::random_device rd;
+  std::string id;
+  for (int i = 0; i < 4; ++i) {
+    char buf[9];
+    std::snprintf(buf, sizeof buf, "%08x", static_cast<unsigned>(rd()));
+    id += buf;
+  }
+  return id;
+}
+
+}  // namespace
 
 RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
                      const RunMetadata& meta)
@@ -22,6 +42,8 @@ RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
                     ec.message() + ")");
   }
   file_ = h5::create_file(path.string());
+  run_id_ = new_run_id();
+  h5::set_attr(file_.get(), "run_id", run_id_);
   h5::set_attr(file_.get(), "scene", meta.scene);
   h5::set_attr(file_.get(), "config_toml", meta.config_toml);
   h5::set_attr(file_.get(), "git_sha", meta.git_sha);
@@ -30,6 +52,65 @@ RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
   h5::Handle g = h5::open_group(file_.get(), "snapshots");
   h5::create_stack(g.get(), "time", 0, "yr", "simulated time of each snapshot");
   flush();
+}
+
+RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path_(path) {
+  h5::quiet_errors();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw IoError(path.string() +
+                  ": the output file of the checkpoint does not exist; pass the run's "
+                  "output file with -o");
+  try {
+    file_ = h5::open_file(path.string(), true);
+  } catch (const IoError&) {
+    throw IoError(path.string() +
+                  ": cannot open the output file read-write (damaged, not HDF5, or "
+                  "open in another program?)");
+  }
+  if (h5::has_attr(file_.get(), "run_id"))
+    run_id_ = h5::get_attr_string(file_.get(), "run_id");
+  h5::Handle g = h5::open_group(file_.get(), "snapshots");
+  const auto have = static_cast<std::size_t>(h5::stack_rows(g.get(), "time"));
+  if (have < keep.n_snapshots)
+    throw IoError(path.string() + ": holds " + std::to_string(have) +
+                  " snapshots, but the checkpoint was taken after " +
+                  std::to_string(keep.n_snapshots) +
+                  ": this is not the output of that checkpoint's run; pass the right "
+                  "file with -o");
+  for (const std::string& name : h5::dataset_names(g.get())) {
+    if (h5::stack_rows(g.get(), name) < keep.n_snapshots)
+      throw IoError(path.string() + ": /snapshots/" + name + " has fewer rows than the " +
+                    std::to_string(keep.n_snapshots) + " snapshots of the checkpoint");
+    // Time first: a reader trusts only rows that have a time.
+    if (name == "time") h5::truncate_stack(g.get(), name, keep.n_snapshots);
+  }
+  for (const std::string& name : h5::dataset_names(g.get())) {
+    if (name == "time") continue;
+    h5::truncate_stack(g.get(), name, keep.n_snapshots);
+    h5::Handle ds(H5Dopen2(g.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+    h5::Handle space(H5Dget_space(ds.get()), H5Sclose);
+    std::array<hsize_t, 2> dims{0, 0};
+    const int rank = H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+    fields_[name] = rank == 2 ? dims[1] : 0;
+  }
+  n_snapshots_ = keep.n_snapshots;
+  flush();
+}
+
+std::vector<double> RunOutput::times_yr() const {
+  h5::Handle g = h5::open_group(file_.get(), "snapshots");
+  return h5::read_doubles(g.get(), "time");
+}
+
+void RunOutput::set_root_attr(const std::string& name, const std::string& value) {
+  h5::set_attr(file_.get(), name, value);
+  flush();
+}
+
+std::string RunOutput::root_attr(const std::string& name) const {
+  if (!h5::has_attr(file_.get(), name)) return "";
+  return h5::get_attr_string(file_.get(), name);
 }
 
 RunOutput::~RunOutput() {
@@ -53,6 +134,28 @@ void RunOutput::set_group_attr(const std::string& group, const std::string& name
   ensure_group(group);
   h5::Handle g = h5::open_group(file_.get(), group);
   h5::set_attr(g.get(), name, value);
+}
+
+void RunOutput::set_group_attr_string(const std::string& group, const std::string& name,
+                                      const std::string& value) {
+  ensure_group(group);
+  h5::Handle g = h5::open_group(file_.get(), group);
+  h5::set_attr(g.get(), name, value);
+}
+
+void RunOutput::add_series(const std::string& group, const std::string& name,
+                           std::size_t width, const std::string& units,
+                           const std::string& description) {
+  ensure_group(group);
+  h5::Handle g = h5::open_group(file_.get(), group);
+  if (!h5::exists(g.get(), name))
+    h5::create_stack(g.get(), name, width, units, description);
+}
+
+void RunOutput::append_series(const std::string& group, const std::string& name,
+                              std::span<const double> row) {
+  h5::Handle g = h5::open_group(file_.get(), group);
+  h5::append_row(g.get(), name, row);
 }
 
 void RunOutput::add_field(const std::string& name, std::size_t width,

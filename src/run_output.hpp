@@ -22,21 +22,51 @@ struct RunMetadata {
   std::string version;
 };
 
+//! Continue the output of an interrupted run: keep its first `n_snapshots` snapshots.
+struct ContinueRun {
+  std::size_t n_snapshots = 0;
+};
+
 class RunOutput {
  public:
   //! Creates the file (and its directory). An existing file is an IoError unless
-  //! `overwrite`: a run never silently replaces data.
+  //! `overwrite`: a run never silently replaces data. The file gets a fresh random
+  //! root attribute run_id, which its checkpoints record.
   RunOutput(const std::filesystem::path& path, bool overwrite, const RunMetadata& meta);
+  //! Reopens an existing output read-write to continue it (restart): every /snapshots
+  //! stack is cut to its first `keep.n_snapshots` rows (rows after them were written
+  //! after the checkpoint and will be written again) and the declared fields are those
+  //! in the file. IoError when the file is missing or holds fewer snapshots.
+  RunOutput(const std::filesystem::path& path, ContinueRun keep);
+  RunOutput(RunOutput&&) = default;
   ~RunOutput();
 
   const std::filesystem::path& path() const { return path_; }
   hid_t file() const { return file_.get(); }
+  //! Root attribute run_id ("" for a file written before run ids existed).
+  const std::string& run_id() const { return run_id_; }
+  //! /snapshots/time [yr], every row.
+  std::vector<double> times_yr() const;
+  //! Sets a root string attribute (e.g. config_toml after a restart) and flushes.
+  void set_root_attr(const std::string& name, const std::string& value);
+  //! A root string attribute, "" when absent.
+  std::string root_attr(const std::string& name) const;
 
   //! Writes a fixed dataset /<group>/<name> (group created on first use).
   void write_static(const std::string& group, const std::string& name,
                     std::span<const double> data, const std::string& units,
                     const std::string& description);
   void set_group_attr(const std::string& group, const std::string& name, double value);
+  void set_group_attr_string(const std::string& group, const std::string& name,
+                             const std::string& value);
+  //! Declares an extendible dataset /<group>/<name> of `width` values per row (0: scalar
+  //! rows), for series not tied to the snapshots (e.g. /timeseries).
+  void add_series(const std::string& group, const std::string& name, std::size_t width,
+                  const std::string& units, const std::string& description);
+  //! Appends one row to a series declared with add_series (no flush: the next snapshot
+  //! flushes).
+  void append_series(const std::string& group, const std::string& name,
+                     std::span<const double> row);
 
   //! Declares /snapshots/<name>, `width` values per snapshot (0: a scalar per snapshot).
   void add_field(const std::string& name, std::size_t width, const std::string& units,
@@ -57,6 +87,7 @@ class RunOutput {
   h5::Handle file_;
   std::map<std::string, std::size_t> fields_;
   std::size_t n_snapshots_ = 0;
+  std::string run_id_;
 };
 
 }  // namespace panoptic

@@ -224,6 +224,30 @@ std::vector<KeySpec> make_keys() {
       real("material.sil_poisson", "0.17", "", "silicate Poisson ratio", 0.0, false, 0.5,
            true),
 
+      // [planetesimals] spec §7 (needs growth.enabled; each channel owns a Sigma_pl)
+      flag("planetesimals.coagulation", "false",
+           "direct coagulation: dust with St >= St_pl that still grows becomes "
+           "planetesimals (spec §7.1)"),
+      positive("planetesimals.St_pl", "10.0", "", "St threshold of direct coagulation"),
+      positive("planetesimals.tau_pl_omega", "10.0", "",
+               "conversion time of direct coagulation in units of 1/Omega_K"),
+      choice("planetesimals.si", "none", {"none", "d16", "s18"},
+             "streaming instability: d16 = Drazkowska et al. 2016 (zeta Sigma_d Omega for "
+             "St >= 0.01), s18 = Schoonenberg et al. 2018 (zeta Sigma_d St Omega), both "
+             "when the midplane rho_d/rho_g >= eps_crit (spec §7.2)"),
+      positive("planetesimals.zeta_d16", "0.01", "", "d16 efficiency"),
+      positive("planetesimals.zeta_s18", "0.1", "", "s18 efficiency"),
+      positive("planetesimals.St_si_min", "0.01", "", "d16: smallest St that takes part"),
+      positive("planetesimals.eps_crit", "1.0", "", "midplane rho_d/rho_g that triggers SI"),
+
+      // [pebbles] spec §8
+      real_list("pebbles.radii_au", "au",
+                "radii where the pebble flux is recorded; empty = the snow line, 1, 3, 10, "
+                "30 au and r_in (those inside the grid)",
+                0.0),
+      integer("pebbles.samples_per_snapshot", "10",
+              "pebble-flux samples (/timeseries) per snapshot interval", 1, 1e5),
+
       // [grid] spec §10.2
       integer("grid.n_cells", "250", "number of log-spaced radial cells", 4, 1e6),
       positive("grid.r_in_au", "1.0", "au", "inner edge (open: outflow, booked)"),

@@ -9,6 +9,7 @@
 #include "physics/contact_mechanics.hpp"
 #include "physics/dust_transport.hpp"
 #include "physics/local_gas.hpp"
+#include "physics/planetesimals.hpp"
 #include "physics/porous_growth.hpp"
 #include "physics/stokes_model.hpp"
 #include "src/run_output.hpp"
@@ -125,6 +126,21 @@ void validate_scene(const Config& cfg) {
         "porosity.enabled",
         "needs growth.enabled = true (the filling factor evolves as the particle grows); "
         "turn growth on or porosity off");
+  for (const char* key : {"planetesimals.coagulation"})
+    if (cfg.flag(key) && !cfg.flag("growth.enabled"))
+      cfg.fail(key,
+               "needs growth.enabled = true (conversion depends on the particles); "
+               "turn growth on or this channel off");
+  if (cfg.str("planetesimals.si") != "none" && !cfg.flag("growth.enabled"))
+    cfg.fail("planetesimals.si",
+             "needs growth.enabled = true (the SI criterion uses the particles' St); "
+             "turn growth on or set planetesimals.si = \"none\"");
+  for (double r : cfg.reals("pebbles.radii_au"))
+    if (r < cfg.real("grid.r_in_au") || r > cfg.real("grid.r_out_au"))
+      cfg.fail("pebbles.radii_au", "every radius must lie in [r_in_au, r_out_au] = [" +
+                                       num(cfg.real("grid.r_in_au")) + ", " +
+                                       num(cfg.real("grid.r_out_au")) +
+                                       "] [au]; remove " + num(r));
   if (cfg.str("dust.init") == "gaussian_ring") {
     const double r0 = cfg.real("dust.ring_r_au");
     if (r0 <= r_in || r0 >= r_out)
@@ -230,6 +246,49 @@ Simulation::Simulation(const Config& cfg)
     growth_ = g.get();
     modules.push_back(std::move(g));
   }
+  // Planetesimal channels (spec §7), after the growth model whose particles they convert.
+  if (growth &&
+      (cfg.flag("planetesimals.coagulation") || cfg.str("planetesimals.si") != "none")) {
+    PlanetesimalOptions po;
+    po.coagulation = cfg.flag("planetesimals.coagulation");
+    po.st_pl = cfg.real("planetesimals.St_pl");
+    po.tau_pl_omega = cfg.real("planetesimals.tau_pl_omega");
+    const auto& si = cfg.str("planetesimals.si");
+    po.si = si == "d16"   ? StreamingInstability::kD16
+            : si == "s18" ? StreamingInstability::kS18
+                          : StreamingInstability::kNone;
+    po.zeta = si == "s18" ? cfg.real("planetesimals.zeta_s18")
+                          : cfg.real("planetesimals.zeta_d16");
+    po.st_si_min = cfg.real("planetesimals.St_si_min");
+    po.eps_crit = cfg.real("planetesimals.eps_crit");
+    auto pl =
+        std::make_unique<Planetesimals>(*layout_, *codec_, *cell_gas_, *stokes_, species_,
+                                        growth_options_from_config(cfg), po, sigma_d_max);
+    planetesimals_ = pl.get();
+    modules.push_back(std::move(pl));
+  }
+  // Pebble-flux monitors (spec §8): the faces nearest to the requested radii.
+  {
+    std::vector<std::pair<std::string, double>> radii;
+    if (cfg.reals("pebbles.radii_au").empty()) {
+      if (std::isfinite(r_snow)) radii.emplace_back("snow line", r_snow / kAu);
+      for (double r : {1.0, 3.0, 10.0, 30.0}) radii.emplace_back(num(r) + " au", r);
+    } else {
+      for (double r : cfg.reals("pebbles.radii_au"))
+        radii.emplace_back(num(r) + " au", r);
+    }
+    for (const auto& [name, r_au] : radii) {
+      if (r_au <= grid_.r_f(0) / kAu || r_au >= grid_.r_f(n) / kAu) continue;
+      int face = 1;
+      for (int f = 1; f < n; ++f)
+        if (std::abs(std::log(grid_.r_f(f) / (r_au * kAu))) <
+            std::abs(std::log(grid_.r_f(face) / (r_au * kAu))))
+          face = f;
+      monitors_.push_back(
+          {name, grid_.r_f(face) / kAu, face, transport->add_monitor(*layout_, face)});
+    }
+    monitors_.push_back({"r_in", grid_.r_f(0) / kAu, 0, transport->m_out_slot()});
+  }
   // The snow line face: the first face with silicate inside and ice outside (spec §6.3).
   for (int f = 1; f < n; ++f)
     if (inside[f - 1] && !inside[f])
@@ -325,6 +384,35 @@ void Simulation::prepare_output(RunOutput& out) const {
   out.add_field("m_out_inner", 0, "g", "cumulative dust mass that left through r_in");
   out.add_field("m_sublimated", 0, "g",
                 "cumulative ice that sublimated at the snow line (spec §6.3)");
+  {
+    std::vector<double> r_mon;
+    std::string names;
+    for (const auto& mon : monitors_) {
+      r_mon.push_back(mon.r_au);
+      names += (names.empty() ? "" : ";") + mon.name;
+    }
+    out.write_static("pebbles", "r_au", r_mon, "au",
+                     "radii (faces) where the pebble flux is recorded; attribute names");
+    out.set_group_attr_string("pebbles", "names", names);
+    out.add_field("m_through", monitors_.size(), "g",
+                  "cumulative dust mass that crossed each /pebbles/r_au inward");
+    out.add_field("pebble_flux", monitors_.size(), "g s^-1",
+                  "inward dust mass flow through each /pebbles/r_au");
+  }
+  if (planetesimals_) {
+    out.add_field("sigma_pl", n, "g cm^-2", "planetesimal surface density, all channels");
+    if (planetesimals_->coag_slot() >= 0)
+      out.add_field("sigma_pl_coag", n, "g cm^-2", "planetesimals by direct coagulation");
+    if (planetesimals_->si_slot() >= 0)
+      out.add_field("sigma_pl_si", n, "g cm^-2",
+                    "planetesimals by streaming instability");
+    out.add_field(
+        "t_first_pl", n, "yr",
+        "time of first planetesimal formation in each cell so far (NaN: not yet; "
+        "formed = 1e-6 of the initial dust converted)");
+    out.add_field("m_pl_coag", 0, "g", "planetesimal mass by direct coagulation");
+    out.add_field("m_pl_si", 0, "g", "planetesimal mass by streaming instability");
+  }
   if (gas_.evolves())
     out.add_field("m_out_gas", 0, "g", "cumulative gas accreted through r_in");
   if (growth_) {
@@ -357,6 +445,20 @@ std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
   f["m_dust"] = {dust_mass_on_grid(y)};
   f["m_out_inner"] = {dust_mass_out(y)};
   f["m_sublimated"] = {dust_mass_sublimated(y)};
+  f["m_through"] = pebble_mass(y);
+  f["pebble_flux"] = pebble_flux(y);
+  if (planetesimals_) {
+    const auto [coag, si] = planetesimal_mass(y);
+    auto c = sigma_pl(y, false), s = sigma_pl(y, true);
+    std::vector<double> total(n, 0.0);
+    for (int i = 0; i < n; ++i)
+      total[i] = (c.empty() ? 0.0 : c[i]) + (s.empty() ? 0.0 : s[i]);
+    f["sigma_pl"] = std::move(total);
+    if (!c.empty()) f["sigma_pl_coag"] = std::move(c);
+    if (!s.empty()) f["sigma_pl_si"] = std::move(s);
+    f["m_pl_coag"] = {coag};
+    f["m_pl_si"] = {si};
+  }
   if (gas_.evolves())
     f["m_out_gas"] = {y[L.global_index(viscous_->m_out_slot())] * viscous_->mass_unit()};
   if (growth_) {
@@ -390,6 +492,45 @@ double Simulation::dust_mass_on_grid(std::span<const double> y) const {
 
 double Simulation::dust_mass_out(std::span<const double> y) const {
   return y[layout_->global_index(transport_->m_out_slot())] * transport_->mass_unit();
+}
+
+std::vector<double> Simulation::sigma_pl(std::span<const double> y, bool si) const {
+  if (!planetesimals_) return {};
+  const int slot = si ? planetesimals_->si_slot() : planetesimals_->coag_slot();
+  if (slot < 0) return {};
+  std::vector<double> out(grid_.n_cells());
+  for (int i = 0; i < grid_.n_cells(); ++i) out[i] = y[layout_->index(i, slot)];
+  return out;
+}
+
+std::pair<double, double> Simulation::planetesimal_mass(std::span<const double> y) const {
+  double m[2] = {0.0, 0.0};
+  for (int c = 0; c < 2; ++c) {
+    const auto sig = sigma_pl(y, c == 1);
+    for (std::size_t i = 0; i < sig.size(); ++i) m[c] += sig[i] * grid_.area(int(i));
+  }
+  return {m[0], m[1]};
+}
+
+std::vector<double> Simulation::pebble_flux(std::span<const double> y) const {
+  const auto mdot = transport_->mass_flow(y);
+  std::vector<double> out;
+  for (const auto& mon : monitors_) out.push_back(-mdot[mon.face]);  // inward positive
+  return out;
+}
+
+std::vector<double> Simulation::pebble_mass(std::span<const double> y) const {
+  std::vector<double> out;
+  for (const auto& mon : monitors_)
+    out.push_back(y[layout_->global_index(mon.global_slot)] * transport_->mass_unit());
+  return out;
+}
+
+double Simulation::budget_error(std::span<const double> y) const {
+  const auto [coag, si] = planetesimal_mass(y);
+  const double total =
+      dust_mass_on_grid(y) + dust_mass_out(y) + dust_mass_sublimated(y) + coag + si;
+  return std::abs(total - dust_mass0_) / dust_mass0_;
 }
 
 double Simulation::dust_mass_sublimated(std::span<const double> y) const {

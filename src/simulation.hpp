@@ -23,6 +23,7 @@ class StokesModel;
 class DustTransport;
 class ViscousGas;
 class PorousGrowth;
+class Planetesimals;
 class CellGas;
 struct ParticleCodec;
 namespace physics {
@@ -38,6 +39,14 @@ void validate_scene(const Config& cfg);
 physics::Species species_from_config(const Config& cfg, const std::string& sp);
 //! The growth-model switches and parameters of the scene (spec §3-§5).
 physics::GrowthOptions growth_options_from_config(const Config& cfg);
+
+//! A radius where the pebble flux is recorded (spec §8): the face nearest to it.
+struct PebbleMonitor {
+  std::string name;      //!< "snow line", "r_in", "10 au"
+  double r_au = 0.0;     //!< radius of the face used [au]
+  int face = 0;          //!< face index (0 = r_in)
+  int global_slot = -1;  //!< cumulative-mass variable (m_out_dust for r_in)
+};
 
 class Simulation {
  public:
@@ -68,6 +77,18 @@ class Simulation {
   double dust_mass_out(std::span<const double> y) const;         //!< through r_in [g]
   double dust_mass_sublimated(std::span<const double> y) const;  //!< at the snow line [g]
   double initial_dust_mass() const { return dust_mass0_; }       //!< [g]
+  //! Planetesimal mass per channel {coagulation, SI} [g] (0 for a channel that is off).
+  std::pair<double, double> planetesimal_mass(std::span<const double> y) const;
+  //! Sigma_pl per channel at the cell centres [g cm^-2] (empty when off).
+  std::vector<double> sigma_pl(std::span<const double> y, bool si) const;
+  const Planetesimals* planetesimals() const { return planetesimals_; }
+  const std::vector<PebbleMonitor>& pebble_monitors() const { return monitors_; }
+  //! Pebble flux (inward mass flow) through every monitor [g s^-1].
+  std::vector<double> pebble_flux(std::span<const double> y) const;
+  //! Cumulative dust mass through every monitor [g].
+  std::vector<double> pebble_mass(std::span<const double> y) const;
+  //! |grid + r_in + sublimated + planetesimals - initial| / initial.
+  double budget_error(std::span<const double> y) const;
   //! One-paragraph summary for `panoptic check` and the run header.
   std::string summary() const;
 
@@ -85,6 +106,8 @@ class Simulation {
   std::unique_ptr<CellGas> cell_gas_;
   std::unique_ptr<ParticleCodec> codec_;
   const PorousGrowth* growth_ = nullptr;
+  const Planetesimals* planetesimals_ = nullptr;
+  std::vector<PebbleMonitor> monitors_;
   std::unique_ptr<DiskModel> model_;
   std::vector<double> sigma_d0_;
   double sigma_scale_ = 1.0, dust_mass0_ = 0.0;

@@ -191,3 +191,20 @@ TEST(Jacobian, GrowthEpsteinDrag) {
   expect_exact_growth({"porosity.enabled=true", "growth.drag_law=\"epstein\""},
                       "Epstein drag");
 }
+
+TEST(Jacobian, PlanetesimalsDirectCoagulation) {
+  expect_exact_growth({"porosity.enabled=true", "planetesimals.coagulation=true"},
+                      "planetesimals, direct coagulation");
+}
+
+TEST(Jacobian, PlanetesimalsStreamingInstabilityD16) {
+  expect_exact_growth(
+      {"porosity.enabled=true", "planetesimals.si=\"d16\"", "dust.dust_to_gas=0.5"},
+      "planetesimals, SI d16");
+}
+
+TEST(Jacobian, PlanetesimalsStreamingInstabilityS18) {
+  expect_exact_growth({"planetesimals.si=\"s18\"", "planetesimals.coagulation=true",
+                       "dust.dust_to_gas=0.5"},
+                      "planetesimals, SI s18 + coagulation");
+}

@@ -1,0 +1,66 @@
+#pragma once
+//! Planetesimal formation (spec §7): dust of a cell is converted into planetesimals,
+//! which are not transported, by
+//!   direct coagulation (§7.1): Sdot = Sigma_d / tau_pl W(St/St_pl) I(dm/dt > 0),
+//!                              tau_pl = 10/Omega_K, St_pl = 10;
+//!   streaming instability (§7.2), when the midplane rho_d/rho_g >= 1:
+//!     d16 (Drazkowska et al. 2016, default): Sdot = zeta Sigma_d Omega_K, zeta = 0.01,
+//!     for
+//!         St >= 0.01;
+//!     s18 (Schoonenberg, Ormel & Krijt 2018): Sdot = zeta Sigma_d St Omega_K, zeta =
+//!     0.1.
+//! Every threshold is a smooth step (logistic in ln x over +-0.1 dex) so CVODE's Newton
+//! iteration sees no kink. The sinks conserve the particle properties: dSigma_d = -Sdot,
+//! dQ = -(Q/Sigma_d) Sdot (spec §6.2). Owns one Sigma_pl variable per channel that is on.
+#include "physics/porous_growth.hpp"
+
+namespace panoptic {
+
+enum class StreamingInstability { kNone, kD16, kS18 };
+
+struct PlanetesimalOptions {
+  bool coagulation = true;     //!< direct coagulation channel (spec §7.1)
+  double st_pl = 10.0;         //!< St threshold of direct coagulation
+  double tau_pl_omega = 10.0;  //!< tau_pl Omega_K
+  StreamingInstability si = StreamingInstability::kD16;
+  double zeta = 0.01;       //!< SI efficiency (d16: 0.01, s18: 0.1)
+  double st_si_min = 0.01;  //!< d16: smallest St that counts
+  double eps_crit = 1.0;    //!< midplane rho_d/rho_g that triggers SI
+  double width_dex = 0.1;   //!< half width of the smooth thresholds [dex]
+};
+
+class Planetesimals : public PhysicsModule {
+ public:
+  //! Registers sigma_pl_coag and/or sigma_pl_si.
+  Planetesimals(StateLayout& layout, const ParticleCodec& codec, const CellGas& gas,
+                const StokesModel& stokes, const std::vector<physics::Species>& species,
+                const physics::GrowthOptions& growth, PlanetesimalOptions options,
+                double sigma_scale);
+
+  std::string_view name() const override { return "planetesimals"; }
+  void declare_pattern(PatternBuilder& pattern) const override;
+  void add_rhs(double t, std::span<const double> y,
+               std::span<double> ydot) const override;
+  void add_jacobian(double t, std::span<const double> y,
+                    JacobianValues& jac) const override;
+
+  int coag_slot() const { return coag_slot_; }  //!< -1 when the channel is off
+  int si_slot() const { return si_slot_; }      //!< -1 when the channel is off
+  //! Conversion rates of cell `cell` at state y [g cm^-2 s^-1]: {coagulation, SI}.
+  std::pair<double, double> rates(int cell, std::span<const double> y) const;
+
+ private:
+  template <class T>
+  void cell_rates(int cell, const T* yc, T& coag, T& si) const;
+
+  const StateLayout& layout_;
+  const ParticleCodec& codec_;
+  const CellGas& gas_;
+  const StokesModel& stokes_;
+  const std::vector<physics::Species>& species_;
+  physics::GrowthOptions growth_;
+  PlanetesimalOptions opt_;
+  int coag_slot_ = -1, si_slot_ = -1;
+};
+
+}  // namespace panoptic

@@ -1,0 +1,48 @@
+#pragma once
+//! What a run reports besides its snapshots (spec §8; issue "disk-wide answer"):
+//! - /timeseries: the pebble flux through the monitored radii, the cumulative mass
+//! through
+//!   each and the mass budget, sampled on a time grid finer than the snapshots (at the
+//!   first CVODE step past each sample time, so it costs one flux evaluation per sample);
+//! - the time of first planetesimal formation in every cell (checked after every step);
+//! - /summary at the end: planetesimal mass and radial range by channel, first-formation
+//!   time over r, pebble mass through the snow line and r_in, final dust mass; printed
+//!   too.
+#include <map>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace panoptic {
+
+class Simulation;
+class RunOutput;
+
+class RunDiagnostics {
+ public:
+  //! `t_start` [s]: 0 for a new run; for a restart, the checkpoint's time (the samples
+  //! after it are cut from /timeseries, the first-formation times are read back from the
+  //! last kept snapshot).
+  RunDiagnostics(const Simulation& sim, RunOutput& out, double t_start);
+  //! After every CVODE step.
+  void on_step(double t, std::span<const double> y);
+  //! Writes the buffered /timeseries rows (call before the snapshot's flush).
+  void flush();
+  //! Adds the diagnostics' snapshot fields (t_first_pl) to `fields`.
+  void add_snapshot_fields(std::map<std::string, std::vector<double>>& fields) const;
+  //! Writes /summary and returns it as text for the terminal.
+  std::string finish(double t, std::span<const double> y);
+
+ private:
+  void sample(double t, std::span<const double> y);
+
+  const Simulation& sim_;
+  RunOutput& out_;
+  std::vector<double> sample_times_;  //!< [s]
+  std::size_t next_sample_ = 0;
+  std::vector<std::vector<double>> rows_time_, rows_flux_, rows_mass_, rows_budget_;
+  std::vector<double> t_first_;    //!< per cell, first planetesimal formation [s]
+  std::vector<double> threshold_;  //!< per cell: Sigma_pl that counts as formed
+};
+
+}  // namespace panoptic

@@ -1,0 +1,106 @@
+"""Helpers of the restart tests (tests/regression/test_restart*.py): run panoptic with
+any arguments, compare the /snapshots of two output files bit for bit, and find the
+checkpoint files next to an output."""
+import os
+import shutil
+import subprocess
+
+# Read files while panoptic writes them: HDF5's file lock would refuse us.
+os.environ["HDF5_USE_FILE_LOCKING"] = "FALSE"
+
+import h5py  # noqa: E402
+import numpy as np  # noqa: E402
+
+from common import REPO  # noqa: E402
+
+EXIT_STOPPED = 75  # panoptic's exit code for "stopped, restart from the checkpoint"
+
+
+def panoptic(exe, scene, *args, sets=(), expect=0):
+    """Runs `panoptic run scene args --set ...`; returns the CompletedProcess. Raises
+    SystemExit, printing the command and its output, when the exit code is not `expect`
+    (None: any)."""
+    cmd = [exe, "run", os.path.join(REPO, scene), *args]
+    for s in sets:
+        cmd += ["--set", s]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if expect is not None and p.returncode != expect:
+        print(" ".join(cmd))
+        print(p.stdout)
+        print(p.stderr)
+        raise SystemExit(f"panoptic exited with {p.returncode}, expected {expect}")
+    return p
+
+
+def checkpoint_of(out):
+    """out/x.h5 -> out/x.chk.h5"""
+    return os.path.splitext(out)[0] + ".chk.h5"
+
+
+def previous_of(out):
+    """out/x.h5 -> out/x.chk.prev.h5"""
+    return os.path.splitext(out)[0] + ".chk.prev.h5"
+
+
+def copy_run(out, dest, files=("output", "chk", "prev")):
+    """Copies an output and its checkpoints to the output name `dest`."""
+    pairs = {"output": (out, dest), "chk": (checkpoint_of(out), checkpoint_of(dest)),
+             "prev": (previous_of(out), previous_of(dest))}
+    for key in files:
+        src, dst = pairs[key]
+        shutil.copyfile(src, dst)
+
+
+def snapshot_differences(a, b):
+    """Names of the /snapshots datasets that differ between files a and b in shape or in
+    any bit (NaN = NaN), plus those present in only one; [] when identical."""
+    diffs = []
+    with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
+        ga, gb = fa["snapshots"], fb["snapshots"]
+        for name in sorted(set(ga) | set(gb)):
+            if name not in ga or name not in gb:
+                diffs.append(name + " (missing)")
+                continue
+            x, y = ga[name][()], gb[name][()]
+            if x.shape != y.shape or not np.array_equal(x.view(np.uint64), y.view(np.uint64)):
+                diffs.append(f"{name} {x.shape} vs {y.shape}")
+    return diffs
+
+
+def h5diff_snapshots(a, b):
+    """h5diff of the two /snapshots groups when Debian's hdf5-tools is installed: True
+    when identical, None when h5diff is missing."""
+    if shutil.which("h5diff") is None:
+        return None
+    p = subprocess.run(["h5diff", "-q", a, b, "/snapshots", "/snapshots"],
+                       capture_output=True, text=True)
+    return p.returncode == 0
+
+
+def rows(path):
+    with h5py.File(path, "r") as f:
+        return f["snapshots/time"].shape[0]
+
+
+def times(path):
+    with h5py.File(path, "r") as f:
+        return f["snapshots/time"][()]
+
+
+def checkpoint_attrs(path):
+    with h5py.File(path, "r") as f:
+        return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
+
+
+def solver_attrs(path):
+    with h5py.File(path, "r") as f:
+        if "solver" not in f:
+            return {}
+        return {k: (v.decode() if isinstance(v, bytes) else v)
+                for k, v in f["solver"].attrs.items()}
+
+
+def y_offset(path):
+    """Byte offset of the state vector /y in a checkpoint file."""
+    with h5py.File(path, "r") as f:
+        return f["y"].id.get_offset()

@@ -1,0 +1,110 @@
+"""Restart bit for bit (README "Restart"): a run continued from a checkpoint writes
+/snapshots identical in every bit to those of the run that was never stopped, whichever
+snapshot the checkpoint is at, and ends with the same solver statistics.
+
+The checkpoints are those at the end of shorter runs of the same scene (output.times_yr
+cut after snapshot j, so output.t_end_yr = its last time: a compatible change), restarted
+with the full list; plus the mid-run .chk.prev.h5 of the default log-spaced scene, and a
+scene with an evolving gas disk (another layout: sigma_d, sigma_g per cell)."""
+import numpy as np
+
+from common import Checks, parse_args
+from restart_common import (checkpoint_attrs, checkpoint_of, copy_run, h5diff_snapshots,
+                            panoptic, previous_of, rows, snapshot_differences,
+                            solver_attrs)
+
+SCENE = "params/fiducial.toml"
+# Transport alone (growth off) keeps the runs short; the growth model has its own case.
+BASE = ["growth.enabled=false", "porosity.enabled=false", "grid.n_cells=300",
+        "transport.St=0.05"]
+TIMES = [float(t) for t in np.geomspace(100.0, 1e6, 13)]
+
+
+def times_set(ts):
+    return [f"output.times_yr=[{','.join(repr(t) for t in ts)}]", f"output.t_end_yr={ts[-1]!r}"]
+
+
+def main():
+    args = parse_args()
+    c = Checks()
+    w = args.workdir
+
+    ref = f"{w}/reference.h5"
+    panoptic(args.exe, SCENE, "-o", ref, "--overwrite", sets=BASE + times_set(TIMES))
+    ref_solver = solver_attrs(ref)
+    print(f"uninterrupted run: {rows(ref)} snapshots, {ref_solver['nst']} steps, "
+          f"{ref_solver['nreinit']} reinitialisations")
+
+    for j in (1, 4, 8, 12):
+        out = f"{w}/cut{j}.h5"
+        panoptic(args.exe, SCENE, "-o", out, "--overwrite", sets=BASE + times_set(TIMES[:j]))
+        chk = checkpoint_attrs(checkpoint_of(out))
+        c.check(chk["snapshot_index"] == j and chk["complete"] == 1,
+                f"run cut after snapshot {j}: its final checkpoint is at snapshot "
+                f"{chk['snapshot_index']}")
+        p = panoptic(args.exe, SCENE, "--restart", checkpoint_of(out),
+                     sets=BASE + times_set(TIMES))
+        diffs = snapshot_differences(ref, out)
+        c.check(not diffs, f"restart from snapshot {j}: every /snapshots dataset identical "
+                           f"to the uninterrupted run's {diffs if diffs else ''}")
+        same = h5diff_snapshots(ref, out)
+        if same is not None:
+            c.check(same, f"restart from snapshot {j}: h5diff finds no difference")
+        s = solver_attrs(out)
+        c.check(all(s[k] == ref_solver[k] for k in ("nst", "nfe", "nje", "nreinit")),
+                f"restart from snapshot {j}: same solver statistics (steps {s['nst']})")
+        c.check("restart from" in p.stdout, "the run says it restarts")
+
+    # The default log-spaced scene: restart from the checkpoint before the last one.
+    full = f"{w}/full.h5"
+    panoptic(args.exe, SCENE, "-o", full, "--overwrite",
+             sets=BASE + ["checkpoint.every_snapshots=7"])
+    again = f"{w}/from_prev.h5"
+    copy_run(full, again, files=("output", "prev"))
+    k = checkpoint_attrs(previous_of(again))["snapshot_index"]
+    c.check(0 < k < rows(full) - 1, f"the previous checkpoint is mid-run (snapshot {k})")
+    # -o: the copy is continued, not the file the checkpoint names
+    panoptic(args.exe, SCENE, "--restart", previous_of(again), "-o", again,
+             sets=BASE + ["checkpoint.every_snapshots=7"])
+    c.check("restarted from" in checkpoint_attrs(again).get("restarts", ""),
+            "the continued output records the restart (root attribute restarts)")
+    diffs = snapshot_differences(full, again)
+    c.check(not diffs and rows(again) == rows(full),
+            f"log-spaced scene restarted from .chk.prev.h5 (snapshot {k}): identical, "
+            f"{rows(again)} snapshots {diffs if diffs else ''}")
+
+    # Evolving gas: two variables per cell and one more booked mass.
+    lbp = "params/tests/lbp_viscous.toml"
+    lbp_sets = ["grid.n_cells=100", "output.times_yr=[1e3, 3e3, 1e4, 3e4, 1e5]",
+                "checkpoint.every_snapshots=2"]
+    gas = f"{w}/gas.h5"
+    panoptic(args.exe, lbp, "-o", gas, "--overwrite", sets=lbp_sets)
+    gas2 = f"{w}/gas_restarted.h5"
+    copy_run(gas, gas2, files=("output", "prev"))
+    k = checkpoint_attrs(previous_of(gas2))["snapshot_index"]
+    panoptic(args.exe, lbp, "--restart", previous_of(gas2), "-o", gas2, sets=lbp_sets)
+    diffs = snapshot_differences(gas, gas2)
+    c.check(not diffs and rows(gas2) == rows(gas),
+            f"evolving gas (sigma_d, sigma_g per cell) restarted from snapshot {k} of "
+            f"{rows(gas) - 1}: identical {diffs if diffs else ''}")
+
+    # The growth model: three variables per cell (sigma_d, q_m, q_phi), snow-line
+    # sublimation booked in a global variable.
+    growth_sets = ["grid.n_cells=60", "output.t_end_yr=3e4", "output.n_snapshots=12",
+                   "checkpoint.every_snapshots=4"]
+    grown = f"{w}/growth.h5"
+    panoptic(args.exe, SCENE, "-o", grown, "--overwrite", sets=growth_sets)
+    grown2 = f"{w}/growth_restarted.h5"
+    copy_run(grown, grown2, files=("output", "prev"))
+    k = checkpoint_attrs(previous_of(grown2))["snapshot_index"]
+    panoptic(args.exe, SCENE, "--restart", previous_of(grown2), "-o", grown2,
+             sets=growth_sets)
+    diffs = snapshot_differences(grown, grown2)
+    c.check(not diffs and rows(grown2) == rows(grown),
+            f"growth model restarted from snapshot {k} of {rows(grown) - 1}: identical "
+            f"{diffs if diffs else ''}")
+    c.finish()
+
+
+if __name__ == "__main__":
+    main()

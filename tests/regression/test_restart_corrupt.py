@@ -1,0 +1,101 @@
+"""A damaged checkpoint (README "Restart"): truncated, bytes flipped in the state, or left
+incomplete, it is refused with a message naming the file and what is wrong, and the
+previous checkpoint (.chk.prev.h5) is used instead, with a message saying so; the run
+then completes identical to the uninterrupted one. With both damaged: exit 4 and a
+message naming both. A restart from a file that is not a checkpoint: exit 4."""
+import os
+
+import h5py
+import numpy as np
+
+from common import Checks, parse_args
+from restart_common import (checkpoint_attrs, checkpoint_of, copy_run, panoptic,
+                            previous_of, rows, snapshot_differences, y_offset)
+
+SCENE = "params/fiducial.toml"
+BASE = ["growth.enabled=false", "porosity.enabled=false", "grid.n_cells=300",
+        "transport.St=0.05"]
+
+
+def flip(path, offset, n=4):
+    with open(path, "r+b") as f:
+        f.seek(offset)
+        b = bytearray(f.read(n))
+        f.seek(offset)
+        f.write(bytes(x ^ 0xA5 for x in b))
+
+
+def truncate(path):
+    os.truncate(path, os.path.getsize(path) // 2)
+
+
+def unflag(path):
+    with h5py.File(path, "r+") as f:
+        del f.attrs["complete"]
+
+
+def main():
+    args = parse_args()
+    c = Checks()
+    w = args.workdir
+
+    # The uninterrupted run, and the same run stopped at snapshot 20 (a shorter list of
+    # snapshot times) with checkpoints every 6 snapshots: .chk.h5 at 20, .prev at 18.
+    ts = [float(t) for t in np.geomspace(100.0, 1e6, 30)]
+    full_sets = BASE + [f"output.times_yr=[{','.join(repr(t) for t in ts)}]",
+                        f"output.t_end_yr={ts[-1]!r}"]
+    cut_sets = BASE + ["checkpoint.every_snapshots=6",
+                       f"output.times_yr=[{','.join(repr(t) for t in ts[:20])}]",
+                       f"output.t_end_yr={ts[19]!r}"]
+    ref = f"{w}/reference.h5"
+    panoptic(args.exe, SCENE, "-o", ref, "--overwrite", sets=full_sets)
+    base = f"{w}/stopped.h5"
+    panoptic(args.exe, SCENE, "-o", base, "--overwrite", sets=cut_sets)
+    k_chk = checkpoint_attrs(checkpoint_of(base))["snapshot_index"]
+    k_prev = checkpoint_attrs(previous_of(base))["snapshot_index"]
+    c.check((k_chk, k_prev) == (20, 18), f"checkpoints at snapshots {k_chk} and {k_prev}")
+
+    damages = {
+        "truncated": (truncate, "truncated"),
+        "flipped bytes in the state": (lambda p: flip(p, y_offset(p) + 800), "checksum"),
+        "incomplete": (unflag, "incomplete"),
+    }
+    for name, (damage, word) in damages.items():
+        out = f"{w}/{name.split()[0]}.h5"
+        copy_run(base, out)
+        damage(checkpoint_of(out))
+        p = panoptic(args.exe, SCENE, "--restart", checkpoint_of(out), "-o", out,
+                     sets=full_sets)
+        c.check(checkpoint_of(out) in p.stderr and word in p.stderr,
+                f"{name}: the message names the checkpoint and says '{word}'")
+        c.check(previous_of(out) in p.stderr and "previous checkpoint" in p.stderr,
+                f"{name}: it says the previous checkpoint is used: "
+                f"{p.stderr.strip().splitlines()[-1]!r}")
+        diffs = snapshot_differences(ref, out)
+        c.check(not diffs and rows(out) == rows(ref),
+                f"{name}: restarted from snapshot {k_prev}, the run completes identical "
+                f"to the uninterrupted run {diffs if diffs else ''}")
+        # The damaged checkpoint was not promoted: the good one at snapshot 18 is kept
+        # as the fallback, the new .chk.h5 is the final one.
+        c.check(checkpoint_attrs(previous_of(out))["snapshot_index"] == k_prev,
+                f"{name}: the damaged checkpoint did not replace the good fallback")
+
+    out = f"{w}/both.h5"
+    copy_run(base, out)
+    truncate(checkpoint_of(out))
+    flip(previous_of(out), y_offset(previous_of(out)) + 80)
+    p = panoptic(args.exe, SCENE, "--restart", checkpoint_of(out), "-o", out,
+                 sets=full_sets, expect=4)
+    c.check(checkpoint_of(out) in p.stderr and previous_of(out) in p.stderr
+            and "without --restart" in p.stderr,
+            "both damaged: exit 4, the message names both files and the fix")
+    c.check(rows(out) == 21, "both damaged: the output is left as it was")
+
+    p = panoptic(args.exe, SCENE, "--restart", ref, "-o", out, sets=full_sets, expect=4)
+    c.check("not a panoptic checkpoint" in p.stderr,
+            "an output file given as checkpoint: exit 4, 'not a panoptic checkpoint'")
+    c.finish()
+
+
+if __name__ == "__main__":
+    main()

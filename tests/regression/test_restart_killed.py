@@ -1,0 +1,89 @@
+"""SIGKILL at a random moment, then restart (README "Restart"): the run cannot react, but
+the last checkpoint on disk is whole (written to a temporary file, fsynced, renamed), no
+snapshot written before it is lost, and the run restarted from it completes with
+/snapshots identical, bit for bit, to those of a run never killed: none missing, none
+twice. Killed several times at random moments (the seed is printed); once the last
+checkpoint is the one of a run that was itself restarted."""
+import os
+import random
+import signal
+import subprocess
+import time
+
+import numpy as np
+
+from common import REPO, Checks, parse_args
+from restart_common import (checkpoint_attrs, checkpoint_of, panoptic, rows,
+                            snapshot_differences, times)
+
+SCENE = "params/fiducial.toml"
+SETS = ["growth.enabled=false", "porosity.enabled=false", "grid.n_cells=2000",
+        "solver.rtol=1e-9", "output.n_snapshots=200", "output.t_end_yr=1e7",
+        "transport.St=0.05", "checkpoint.every_snapshots=10"]
+
+
+def launch(exe, out, restart=None):
+    cmd = [exe, "run", os.path.join(REPO, SCENE), "-o", out]
+    cmd += ["--restart", restart] if restart else ["--overwrite"]
+    for s in SETS:
+        cmd += ["--set", s]
+    return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def kill_at_random(proc, chk, rng, wall):
+    """Waits for a first checkpoint, then SIGKILLs at a random moment; returns whether
+    the process was still running when killed."""
+    deadline = time.time() + 60
+    while proc.poll() is None and not os.path.exists(chk) and time.time() < deadline:
+        time.sleep(0.01)
+    time.sleep(rng.uniform(0.0, 0.5 * wall))
+    running = proc.poll() is None
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    return running
+
+
+def main():
+    args = parse_args()
+    c = Checks()
+    w = args.workdir
+    seed = int(os.environ.get("PANOPTIC_TEST_SEED", time.time_ns() % 2**32))
+    rng = random.Random(seed)
+    print(f"seed {seed} (set PANOPTIC_TEST_SEED to repeat)")
+
+    ref = f"{w}/reference.h5"
+    t0 = time.time()
+    panoptic(args.exe, SCENE, "-o", ref, "--overwrite", sets=SETS)
+    wall = time.time() - t0
+    ref_times = times(ref)
+
+    for trial in range(2):
+        out = f"{w}/killed{trial}.h5"
+        chk = checkpoint_of(out)
+        for stale in (out, chk):
+            if os.path.exists(stale):
+                os.remove(stale)
+        running = kill_at_random(launch(args.exe, out), chk, rng, wall)
+        restart_from = chk
+        if trial == 1:
+            # Kill the restarted run too: its checkpoints continue the first run's.
+            kill_at_random(launch(args.exe, out, restart=chk), chk, rng, wall)
+        n_file = rows(out)
+        k = checkpoint_attrs(chk)["snapshot_index"]
+        print(f"trial {trial}: killed with {n_file} snapshots in the file, last checkpoint "
+              f"at snapshot {k}")
+        c.check(running, f"trial {trial}: the run was going when killed")
+        c.check(k <= n_file - 1 and np.array_equal(times(out)[:k + 1], ref_times[:k + 1]),
+                f"trial {trial}: every snapshot up to the checkpoint ({k}) is in the file")
+        p = panoptic(args.exe, SCENE, "--restart", restart_from, "-o", out, sets=SETS)
+        diffs = snapshot_differences(ref, out)
+        t = times(out)
+        c.check(not diffs and len(t) == len(ref_times) and np.all(np.diff(t) > 0),
+                f"trial {trial}: restarted from snapshot {k}: {len(t)} snapshots, none "
+                f"missing or twice, identical to the uninterrupted run "
+                f"{diffs if diffs else ''} {p.stderr.strip()}")
+    c.finish()
+
+
+if __name__ == "__main__":
+    main()
