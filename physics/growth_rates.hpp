@@ -141,12 +141,19 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
   const T e_imp = 0.25 * m * r.dv * r.dv;
   const T w_comp = log_step(e_imp, 3.0 * o.b * sp.e_roll, 0.1);
   // spec §4.3 compression slopes: Epstein St < 1: -1/8; Stokes St < 1: 0; St >= 1: -1/5
-  const T w_stokes = log_step(knudsen_ratio(r.a, gas), 1.0, 0.1);
+  // (the Stokes-drag slope only where the drag law has a Stokes regime)
+  const T w_stokes = o.drag == DragLaw::kEpstein
+                         ? T(0.0)
+                         : T(log_step(knudsen_ratio(r.a, gas), 1.0, 0.1));
   const T w_heavy = log_step(r.St, 1.0, 0.1);
   const T s_comp = (1.0 - w_heavy) * ((1.0 - w_stokes) * (-0.125)) + w_heavy * (-0.2);
   const T slope = (1.0 - w_comp) * o.s_hs + w_comp * s_comp;
   // growth only (spec §4.3: applied while dm/dt > 0)
-  r.dlnphi_dt = slope * positive_part<T>(r.dlnm_dt, 1e-30);
+  // The positive part is taken of dm/dt relative to the coagulation rate, so its smooth
+  // band scales with the rate (an absolute band would be a hard max at real rates, with
+  // a kink where fragmentation or erosion turns growth into loss).
+  const T growth = dm_coag / m * positive_part<T>(dm / (dm_coag + 1e-300), 1e-3);
+  r.dlnphi_dt = slope * growth;
 
   if (o.gas_compaction || o.self_gravity) {
     using std::log;
@@ -167,7 +174,7 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
     }
     floor = soft_min(floor, T(o.phi_max));
     // spec §4.4: relax up to the floor on t_relax = 0.01 min(t_grow, 1/Omega)
-    const T rate_grow = positive_part<T>(r.dlnm_dt, 1e-30) + 1e-30;
+    const T rate_grow = growth + 1e-30;
     const T t_grow = 1.0 / rate_grow;
     const T t_relax = 0.01 * soft_min(t_grow, T(1.0 / gas.omega_k));
     // softplus sharpness 100: below the floor by z the push is e^(-100 z)-small, so phi

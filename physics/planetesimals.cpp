@@ -39,9 +39,10 @@ void Planetesimals::cell_rates(int cell, const T* yc, T& coag, T& si) const {
     const auto r = physics::particle_rates(sigma, codec_.mass(cell, yc), codec_.phi(yc),
                                            st, g, species_[cell], growth_);
     const double tau_pl = opt_.tau_pl_omega / g.omega_k;
-    // dm/dt > 0, smoothly: on once the particle doubles its mass within 1e6 / Omega
+    // dm/dt > 0, smoothly: on while the particle e-folds its mass within 1e9 / Omega (a
+    // particle held by erosion or fragmentation grows far slower than that)
     using std::tanh;
-    const T growing = 0.5 * (1.0 + tanh(1e6 / g.omega_k * r.dlnm_dt));
+    const T growing = 0.5 * (1.0 + tanh(1e9 / g.omega_k * r.dlnm_dt));
     coag = sigma / tau_pl * physics::log_step(st, opt_.st_pl, opt_.width_dex) * growing;
   }
   if (opt_.si != StreamingInstability::kNone) {

@@ -131,10 +131,6 @@ void validate_scene(const Config& cfg) {
       cfg.fail(key,
                "needs growth.enabled = true (conversion depends on the particles); "
                "turn growth on or this channel off");
-  if (cfg.str("planetesimals.si") != "none" && !cfg.flag("growth.enabled"))
-    cfg.fail("planetesimals.si",
-             "needs growth.enabled = true (the SI criterion uses the particles' St); "
-             "turn growth on or set planetesimals.si = \"none\"");
   for (double r : cfg.reals("pebbles.radii_au"))
     if (r < cfg.real("grid.r_in_au") || r > cfg.real("grid.r_out_au"))
       cfg.fail("pebbles.radii_au", "every radius must lie in [r_in_au, r_out_au] = [" +
@@ -190,25 +186,27 @@ Simulation::Simulation(const Config& cfg)
       *std::max_element(gas_.static_sigma.begin(), gas_.static_sigma.end());
   sigma_scale_ = sigma_d_max;
 
+  // The local gas of every cell and the decoder of the particle state (spec §2, §6.2).
+  const auto dlnp = dlnp_dlnr_centres(*disk_, grid_, gas_.static_sigma);
+  std::vector<physics::LocalGas> local(n);
+  for (int i = 0; i < n; ++i) {
+    const double r = grid_.r_c(i);
+    local[i] = physics::make_local_gas(gas_.static_sigma[i], disk_->temperature(r), r,
+                                       disk_->star().mass, disk_->alpha(), dlnp[i],
+                                       disk_->thermal().mu, disk_->thermal().sigma_mol);
+  }
+  cell_gas_ = std::make_unique<CellGas>(std::move(local), gas_);
+  codec_ = std::make_unique<ParticleCodec>();
+  codec_->m_ref = std::min(ice.m0, sil.m0);
+  for (int i = 0; i < n; ++i)
+    codec_->x_lo.push_back(std::log(species_[i].m0 / codec_->m_ref));
+  // Below this Sigma_d the ratios Q/Sigma_d are noise: 1e-3 of CVODE's absolute
+  // tolerance.
+  codec_->eps_sigma = 1e-3 * cfg.real("solver.atol_sigma") * sigma_d_max;
+
   // Stokes number: from the particles of the growth model (spec §2), or prescribed.
   const bool growth = cfg.flag("growth.enabled");
   if (growth) {
-    const auto dlnp = dlnp_dlnr_centres(*disk_, grid_, gas_.static_sigma);
-    std::vector<physics::LocalGas> local(n);
-    for (int i = 0; i < n; ++i) {
-      const double r = grid_.r_c(i);
-      local[i] = physics::make_local_gas(gas_.static_sigma[i], disk_->temperature(r), r,
-                                         disk_->star().mass, disk_->alpha(), dlnp[i],
-                                         disk_->thermal().mu, disk_->thermal().sigma_mol);
-    }
-    cell_gas_ = std::make_unique<CellGas>(std::move(local), gas_);
-    codec_ = std::make_unique<ParticleCodec>();
-    codec_->m_ref = std::min(ice.m0, sil.m0);
-    for (int i = 0; i < n; ++i)
-      codec_->x_lo.push_back(std::log(species_[i].m0 / codec_->m_ref));
-    // Below this Sigma_d the ratios Q/Sigma_d are noise: 1e-3 of CVODE's absolute
-    // tolerance.
-    codec_->eps_sigma = 1e-3 * cfg.real("solver.atol_sigma") * sigma_d_max;
     stokes_ = std::make_unique<GrowthStokes>(*codec_, *cell_gas_, species_,
                                              growth_options_from_config(cfg).drag);
   } else {
@@ -235,8 +233,8 @@ Simulation::Simulation(const Config& cfg)
   auto transport = std::make_unique<DustTransport>(
       *layout_, grid_, *disk_, gas_, stencil, *stokes_, topt, sigma_d_max, dust_mass0_);
   transport_ = transport.get();
+  codec_->sigma_slot = transport->sigma_slot();
   if (growth) {
-    codec_->sigma_slot = transport->sigma_slot();
     auto g =
         std::make_unique<PorousGrowth>(*layout_, *codec_, *cell_gas_, *stokes_, species_,
                                        growth_options_from_config(cfg), sigma_d_max);
@@ -247,8 +245,8 @@ Simulation::Simulation(const Config& cfg)
     modules.push_back(std::move(g));
   }
   // Planetesimal channels (spec §7), after the growth model whose particles they convert.
-  if (growth &&
-      (cfg.flag("planetesimals.coagulation") || cfg.str("planetesimals.si") != "none")) {
+  // Without growth only the SI channel can run, on the prescribed St.
+  if (cfg.flag("planetesimals.coagulation") || cfg.str("planetesimals.si") != "none") {
     PlanetesimalOptions po;
     po.coagulation = cfg.flag("planetesimals.coagulation");
     po.st_pl = cfg.real("planetesimals.St_pl");

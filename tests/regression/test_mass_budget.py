@@ -1,5 +1,5 @@
-"""The dust mass budget (spec §6.3): mass on the grid + mass that left through r_in + ice
-sublimated at the snow line equals the initial mass to 1e-12 relative at every snapshot of
+"""The dust mass budget (spec §6.3, §7): mass on the grid + planetesimals + mass that left
+through r_in + ice sublimated at the snow line equals the initial mass to 1e-12 relative at every snapshot of
 a whole run: every scene in params/ (growth, erosion, fragmentation), transport alone, with
 the gas evolving, and at a loose tolerance (the budget is exact in the discretisation, not
 a consequence of accuracy)."""
@@ -9,7 +9,9 @@ from common import Checks, load_run, parse_args, run
 
 CASES = [
     ("fiducial", "params/fiducial.toml", []),
+    ("erosion_20", "params/erosion_20.toml", []),
     ("erosion_40", "params/erosion_40.toml", []),
+    ("erosion_60", "params/erosion_60.toml", []),
     ("compact_fragmentation", "params/compact_fragmentation.toml", []),
     ("fiducial, rtol 1e-3", "params/fiducial.toml", ["solver.rtol=1e-3"]),
     ("fiducial, viscous gas", "params/fiducial.toml", ["gas.evolve=true"]),
@@ -27,6 +29,9 @@ def main():
         run(args.exe, scene, out, sets)
         r = load_run(out)
         m = r.snapshots["m_dust"] + r.snapshots["m_out_inner"] + r.snapshots["m_sublimated"]
+        for ch in ("m_pl_coag", "m_pl_si"):
+            if ch in r.snapshots:
+                m = m + r.snapshots[ch]
         err = np.max(np.abs(m / m[0] - 1))
         left = r.snapshots["m_out_inner"][-1] / m[0]
         grid_mass = np.sum(r.snapshots["sigma_d"] * r.area, axis=1)
