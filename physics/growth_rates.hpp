@@ -107,7 +107,11 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
   // spec §4.1 (Okuzumi et al. 2012 single-size form): sigma dv rho_d / sqrt(2) with the
   // vertical average over Gaussian layers of equal height.
   const T dm_coag = o.f_grow * 2.0 * sqrt(kPi) * r.a * r.a * r.dv * sigma_d / r.h_d;
-  T dm = dm_coag;
+  // Erosion, fragmentation, bouncing and the size cap multiply dm_coag by a factor that
+  // does not depend on Sigma_d (both terms of E2 are proportional to it): dm = dm_coag
+  // factor. Keeping the factor apart lets the filling factor test "dm/dt > 0" smoothly on
+  // it (below) without dividing by a rate that vanishes with the dust.
+  T factor = T(1.0);
   r.dv_ls = T(0.0);
   if (o.erosion != ErosionModel::kNone) {
     const double st_s = small_projectile_st(o, sp, gas);
@@ -116,22 +120,24 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
     using std::tanh;
     const T s = 0.5 * (1.0 - tanh((r.dv_ls / o.v_eros - 1.0) / o.w_eros));
     if (o.erosion == ErosionModel::kHalt) {  // E1: growth halts where dv_ls = v_eros
-      dm = dm_coag * s;
+      factor = s;
     } else {  // E2: rate balance with an implicit reservoir of small projectiles
+      // dm = (1 - f_s) dm_coag + f_s 2 sqrt(pi) a^2 dv_ls Sigma_d / h_bar [1 -
+      // (1+e)(1-S)]
       const double h_s = value_of(dust_scale_height(T(st_s), gas));
       const T h_bar = sqrt(r.h_d * r.h_d + h_s * h_s) / sqrt(2.0);
-      dm = (1.0 - o.f_s) * dm_coag + o.f_s * 2.0 * sqrt(kPi) * r.a * r.a * r.dv_ls *
-                                         sigma_d / h_bar *
-                                         (1.0 - (1.0 + o.eps_eros) * (1.0 - s));
+      factor = (1.0 - o.f_s) + o.f_s / o.f_grow * (r.dv_ls / r.dv) * (r.h_d / h_bar) *
+                                   (1.0 - (1.0 + o.eps_eros) * (1.0 - s));
     }
   }
   if (o.fragmentation) {  // spec §5.3: growth turns into loss above v_frag, smoothly
     const T dv2 = r.dv * r.dv;
-    dm = dm * (1.0 - 2.0 * dv2 / (dv2 + sp.v_frag * sp.v_frag));
+    factor = factor * (1.0 - 2.0 * dv2 / (dv2 + sp.v_frag * sp.v_frag));
   }
   if (o.bouncing)  // spec §5.3: compact aggregates bounce (p_stick -> 0 above phi_bounce)
-    dm = dm * (1.0 - log_step(phi, o.phi_bounce, 0.05));
-  dm = dm * (1.0 - log_step(r.St, o.st_max, 0.1));  // soft cap of the particle size
+    factor = factor * (1.0 - log_step(phi, o.phi_bounce, 0.05));
+  factor = factor * (1.0 - log_step(r.St, o.st_max, 0.1));  // soft cap of the size
+  const T dm = dm_coag * factor;
   r.dm_dt = dm;
   r.dlnm_dt = dm / m;
 
@@ -149,10 +155,10 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
   const T s_comp = (1.0 - w_heavy) * ((1.0 - w_stokes) * (-0.125)) + w_heavy * (-0.2);
   const T slope = (1.0 - w_comp) * o.s_hs + w_comp * s_comp;
   // growth only (spec §4.3: applied while dm/dt > 0)
-  // The positive part is taken of dm/dt relative to the coagulation rate, so its smooth
-  // band scales with the rate (an absolute band would be a hard max at real rates, with
-  // a kink where fragmentation or erosion turns growth into loss).
-  const T growth = dm_coag / m * positive_part<T>(dm / (dm_coag + 1e-300), 1e-3);
+  // The positive part is taken of the factor dm/dm_coag, so its smooth band scales with
+  // the rate (an absolute band would be a hard max at real rates, with a kink where
+  // fragmentation or erosion turns growth into loss).
+  const T growth = dm_coag / m * positive_part<T>(factor, 1e-3);
   r.dlnphi_dt = slope * growth;
 
   if (o.gas_compaction || o.self_gravity) {
