@@ -126,6 +126,8 @@ void RunOutput::write_static(const std::string& group, const std::string& name,
                              const std::string& description) {
   ensure_group(group);
   h5::Handle g = h5::open_group(file_.get(), group);
+  // replaced when it exists: a restarted run rewrites its /summary
+  if (h5::exists(g.get(), name)) H5Ldelete(g.get(), name.c_str(), H5P_DEFAULT);
   h5::write_vector(g.get(), name, data, units, description);
 }
 

@@ -52,7 +52,8 @@ class RunOutput {
   //! A root string attribute, "" when absent.
   std::string root_attr(const std::string& name) const;
 
-  //! Writes a fixed dataset /<group>/<name> (group created on first use).
+  //! Writes a fixed dataset /<group>/<name> (group created on first use; an existing
+  //! dataset of that name is replaced).
   void write_static(const std::string& group, const std::string& name,
                     std::span<const double> data, const std::string& units,
                     const std::string& description);
