@@ -3,6 +3,8 @@
 Modules:
     reader    -- ``load_run(path) -> Run``: read a run file into numpy arrays.
     analytic  -- closed-form solutions used by the regression tests.
-    plot      -- ``python3 -m postprocess.plot RUN.h5``: diagnostic figures.
+    plot      -- ``python3 -m postprocess.plot RUN.h5``: Sigma_d and dust-to-gas profiles.
+    plot_run  -- ``python3 -m postprocess.plot_run RUN.h5``: every figure of a run (the
+                 above, r-t maps, pebble flux, planetesimals, mass budget).
     test_postprocess -- self-test, ``python3 -m postprocess.test_postprocess``.
 """

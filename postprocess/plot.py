@@ -50,9 +50,9 @@ def nearest_snapshots(time, times_yr):
 
 
 def format_years(t_yr):
-    """Time [yr] as a short label: "500 yr", "$2.5\\times10^{5}$ yr"."""
-    if t_yr == 0 or 1e-2 <= abs(t_yr) < 1e4:
-        return f"{t_yr:.3g} yr"
+    """Time [yr] as a short label: "500 yr", "3162 yr", "$2.5\\times10^{5}$ yr"."""
+    if t_yr == 0 or (1e-2 <= abs(t_yr) < 1e4 and "e" not in f"{t_yr:.4g}"):
+        return f"{t_yr:.4g} yr"     # 4 digits: 3162 yr, not 3.16e+03 yr
     mantissa, exponent = f"{t_yr:.2e}".split("e")
     mantissa = f"{float(mantissa):g}"
     prefix = "" if mantissa == "1" else rf"{mantissa}\times"

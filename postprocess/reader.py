@@ -6,8 +6,17 @@ Layout (written by the C++ code):
     /disk/*          static gas-disk fields at cell centres (N,); attr r_snow_au
     /snapshots/*     time (nt,) [yr] and per-snapshot fields (nt, ...), e.g.
                      sigma_d, sigma_g [g cm^-2] (nt, N), m_dust [g] (nt,)
+    /timeseries/*    finer-sampled diagnostics: time (ns,) [yr], pebble_flux
+                     [M_earth Myr^-1] and m_through [M_earth] (ns, n_monitors),
+                     mass_budget [M_earth] (ns, 6)
+    /pebbles/r_au    pebble-flux monitor radii (n_monitors,) [au]; attr names
+                     (";"-separated, same order)
+    /summary/*       end-of-run numbers: 1-element datasets (m_pl_coag [M_earth],
+                     r_min_pl_si [au], budget_error, ...) and t_first_pl (N,) [yr]
     /solver          attrs nst, nfe, nje, netf, nni, nncf, wall_s, status
-Every dataset carries `units` and `description` attributes.
+Every dataset carries `units` and `description` attributes. /timeseries, /pebbles and
+/summary are absent from older and transport-only files; /summary and /solver are
+written only when the run finishes.
 
 Usage:
     run = load_run("out/run.h5")
@@ -35,13 +44,23 @@ class Run:
                     including "time")
         disk        dict name -> array (N,), static gas-disk fields
         r_snow_au   snow-line radius [au], NaN if the disk has none
+        timeseries  dict name -> array with first dimension ns (every /timeseries
+                    dataset, including "time" [yr]); {} if the file has none
+        pebbles     dict name -> array of every /pebbles dataset (r_au [au]); {} if none
+        pebble_names  monitor names (list of str, one per pebbles["r_au"] entry)
+        summary     dict name -> value of every /summary dataset: 1-element datasets as
+                    float (m_pl_coag [M_earth], r_min_pl_coag [au], budget_error, ...),
+                    others as arrays (t_first_pl (N,) [yr]); {} if absent
         units       dict dataset path ("snapshots/sigma_d", "grid/r_c", ...) -> unit str
+        descriptions  dict dataset path -> `description` attribute str
         attrs       root attributes as str (config_toml, git_sha, version, scene)
         solver      dict of /solver attributes (empty if the run did not finish)
         config      the resolved scene, config_toml parsed with tomllib (empty if absent)
     """
 
-    def __init__(self, path, grid, disk, r_snow_au, snapshots, units, attrs, solver):
+    def __init__(self, path, grid, disk, r_snow_au, snapshots, units, attrs, solver,
+                 timeseries=None, pebbles=None, pebble_names=None, summary=None,
+                 descriptions=None):
         self.path = str(path)
         self.r_c = grid["r_c"]
         self.r_f = grid["r_f"]
@@ -51,7 +70,12 @@ class Run:
         self.r_snow_au = r_snow_au
         self.snapshots = snapshots
         self.time = snapshots["time"]
+        self.timeseries = timeseries or {}
+        self.pebbles = pebbles or {}
+        self.pebble_names = list(pebble_names or [])
+        self.summary = summary or {}
         self.units = units
+        self.descriptions = descriptions or {}
         self.attrs = attrs
         self.solver = solver
         self.config = _parse_config(attrs.get("config_toml", ""), self.path)
@@ -66,13 +90,26 @@ class Run:
         """Number of complete snapshots nt."""
         return len(self.time)
 
+    @property
+    def finished(self):
+        """True when the run completed (the file has /solver or /summary)."""
+        return bool(self.solver) or bool(self.summary)
+
+    @property
+    def monitor_r_au(self):
+        """Pebble-flux monitor radii (n_monitors,) [au]; empty if the file has none."""
+        return self.pebbles.get("r_au", np.zeros(0))
+
     def field(self, name):
         """Array of a dataset, by short name or by path.
 
         A short name ("sigma_d", "T", "r_c") is looked up in /snapshots, then /disk,
-        then /grid; a path ("disk/T", "snapshots/St") selects the group explicitly.
+        /grid, /timeseries, /summary and /pebbles; a path ("disk/T", "snapshots/St",
+        "timeseries/pebble_flux") selects the group explicitly.
         """
-        groups = {"snapshots": self.snapshots, "disk": self.disk, "grid": self.grid}
+        groups = {"snapshots": self.snapshots, "disk": self.disk, "grid": self.grid,
+                  "timeseries": self.timeseries, "summary": self.summary,
+                  "pebbles": self.pebbles}
         group, _, key = name.strip("/").rpartition("/")
         if group:
             if group in groups and key in groups[group]:
@@ -97,18 +134,28 @@ def load_run(path):
     """Read the run file at `path` (read-only) and return a Run.
 
     Snapshot datasets are cut to the smallest first dimension among them, so a file
-    whose writer was killed between two dataset appends still loads consistently.
+    whose writer was killed between two dataset appends still loads consistently;
+    /timeseries likewise (its writer appends `time` last, so the rows kept are those
+    that have a time). Missing /timeseries, /pebbles or /summary give empty dicts.
     """
     with _open_read_only(path) as f:
-        units = {}
-        f.visititems(lambda name, obj: _collect_units(units, name, obj))
+        units, descriptions = {}, {}
+        f.visititems(lambda name, obj: _collect_units(units, descriptions, name, obj))
         grid = _read_group(f, "grid")
         disk = _read_group(f, "disk")
         r_snow_au = float(f["disk"].attrs.get("r_snow_au", np.nan)) if "disk" in f else np.nan
         snapshots = _truncate_to_common_length(_read_group(f, "snapshots"), path)
+        timeseries = _read_timeseries(f, path)
+        pebbles = _read_group(f, "pebbles")
+        pebble_names = _monitor_names(f, pebbles.get("r_au"), path)
+        summary = {name: (float(a.ravel()[0]) if a.ndim <= 1 and a.size == 1
+                          and a.dtype.kind in "fiu" else a)
+                   for name, a in _read_group(f, "summary").items()}
         attrs = {k: _to_str(v) for k, v in f.attrs.items()}
         solver = {k: _to_python(v) for k, v in f["solver"].attrs.items()} if "solver" in f else {}
-    return Run(path, grid, disk, r_snow_au, snapshots, units, attrs, solver)
+    return Run(path, grid, disk, r_snow_au, snapshots, units, attrs, solver,
+               timeseries=timeseries, pebbles=pebbles, pebble_names=pebble_names,
+               summary=summary, descriptions=descriptions)
 
 
 def _open_read_only(path):
@@ -122,10 +169,11 @@ def _open_read_only(path):
         raise
 
 
-def _collect_units(units, name, obj):
-    """visititems callback: record the `units` attribute of every dataset."""
+def _collect_units(units, descriptions, name, obj):
+    """visititems callback: record the `units` and `description` of every dataset."""
     if isinstance(obj, h5py.Dataset):
         units[name] = _to_str(obj.attrs.get("units", ""))
+        descriptions[name] = _to_str(obj.attrs.get("description", ""))
 
 
 def _read_group(f, group):
@@ -135,17 +183,49 @@ def _read_group(f, group):
     return {name: obj[()] for name, obj in f[group].items() if isinstance(obj, h5py.Dataset)}
 
 
-def _truncate_to_common_length(snapshots, path):
-    """Cut every snapshot array to the smallest first dimension among them."""
+def _truncate_to_common_length(snapshots, path, group="snapshots", stacklevel=3):
+    """Cut every array of `group` to the smallest first dimension among them."""
     lengths = {name: a.shape[0] for name, a in snapshots.items() if a.ndim >= 1}
     if "time" not in lengths:
-        raise KeyError(f"{path}: /snapshots/time is missing")
+        raise KeyError(f"{path}: /{group}/time is missing")
     nt = min(lengths.values())
     short = sorted(name for name, n in lengths.items() if n > nt)
     if short:
-        warnings.warn(f"{path}: snapshot datasets have unequal lengths (killed run?); "
-                      f"using the first {nt} rows of {', '.join(short)}", stacklevel=3)
+        kind = "snapshot" if group == "snapshots" else f"/{group}"
+        warnings.warn(f"{path}: {kind} datasets have unequal lengths (killed run?); "
+                      f"using the first {nt} rows of {', '.join(short)}",
+                      stacklevel=stacklevel)
     return {name: (a[:nt] if name in lengths else a) for name, a in snapshots.items()}
+
+
+def _read_timeseries(f, path):
+    """/timeseries cut to a common length; {} (with a warning) if it has no time."""
+    series = _read_group(f, "timeseries")
+    if not series:
+        return {}
+    if "time" not in series:
+        warnings.warn(f"{path}: /timeseries has no time dataset; ignored", stacklevel=3)
+        return {}
+    return _truncate_to_common_length(series, path, group="timeseries", stacklevel=4)
+
+
+def _monitor_names(f, r_au, path):
+    """Names of the pebble-flux monitors: the `names` attribute of /pebbles (or of
+    /pebbles/r_au), split at ";"; "<r> au" for each radius when absent or mismatched."""
+    if r_au is None:
+        return []
+    raw = None
+    for obj in (f["pebbles"], f["pebbles"].get("r_au")):
+        if obj is not None and "names" in obj.attrs:
+            raw = _to_str(obj.attrs["names"])
+            break
+    names = [n.strip() for n in raw.split(";")] if raw else []
+    if len(names) != len(r_au):
+        if raw is not None:
+            warnings.warn(f"{path}: /pebbles names {raw!r} do not match the "
+                          f"{len(r_au)} radii; using the radii", stacklevel=3)
+        names = [f"{r:.3g} au" for r in r_au]
+    return names
 
 
 def _parse_config(text, path):

@@ -2,10 +2,11 @@
 
     /usr/bin/python3 -m postprocess.test_postprocess
 
-Builds synthetic run files (the layout of postprocess/reader.py) in a temporary
+Builds synthetic run files (the layout of postprocess/reader.py, with and without the
+/timeseries, /pebbles and /summary groups, growth and planetesimal fields) in a temporary
 directory, reads them back, checks the closed forms of postprocess/analytic.py and
-runs the plot command. Prints one line per check and "N passed, M failed" last;
-exit status 0 when every check passed, 1 otherwise.
+runs the plot commands (postprocess.plot, postprocess.plot_run). Prints one line per
+check and "N passed, M failed" last; exit status 0 when every check passed, 1 otherwise.
 """
 import contextlib
 import io
@@ -18,12 +19,15 @@ import warnings
 import h5py
 import numpy as np
 
-from postprocess import analytic, plot, reader
+from postprocess import analytic, plot, plot_run, reader
 
 AU = 1.496e13    # [cm]
 YR = 3.156e7     # [s]
 CONFIG_TOML = '[grid]\nr_in_au = 0.1\nr_out_au = 1000.0\nn_cells = 200\n\n[disk]\nalpha = 1e-3\n'
 SNOW_AU = 3.0
+M_EARTH = 5.972e27   # [g]
+MYR = 3.156e13       # [s]
+MONITORS = ("snow line", "3 au", "10 au", "30 au", "r_in")
 
 
 # --- synthetic run files ---------------------------------------------------------------
@@ -102,6 +106,99 @@ def write_run(path, n_cells=200, time_yr=None, killed=False):
             "sigma_g": sigma_g, "m_dust": m_dust}
 
 
+def add_diagnostics(path, ref, planetesimals="formed", killed=False, names=None):
+    """Add the later-version datasets to a file made by write_run (in place).
+
+    Growth field phi; pebble monitors (/pebbles/r_au, attr names, snapshot pebble_flux
+    [g s^-1] and m_through [g]); /timeseries (time, pebble_flux, m_through, mass_budget)
+    on 4 samples per snapshot interval; planetesimals="formed": sigma_pl(_coag, _si),
+    m_pl_*, t_first_pl growing in 1.5-4 au after 1e3 yr, "none": the same fields all
+    zero/NaN, None: no planetesimal fields; /summary unless killed. killed=True also
+    leaves /timeseries/time two rows shorter than the other /timeseries datasets (the
+    writer appends time last). Returns a dict of what was written.
+    """
+    r_c, r_f, area, time = ref["r_c"], ref["r_f"], ref["area"], ref["time"]
+    nt, n = ref["sigma_d"].shape
+    sigma_d0 = ref["sigma_d"][0]
+    zone = (r_c > 1.5) & (r_c < 4.0)
+    growth = np.clip(np.log10(np.maximum(time, 1.0) / 1e3), 0.0, None)[:, None]   # 0 until 1e3 yr
+    coag = np.where(zone[None, :] & (r_c[None, :] < 3.0), 1e-3 * sigma_d0 * growth, 0.0)
+    si = np.where(zone[None, :] & (r_c[None, :] >= 3.0), 1e-4 * sigma_d0 * growth, 0.0)
+    if planetesimals == "none":
+        coag, si = np.zeros_like(coag), np.zeros_like(si)
+    formed = (coag + si) > 1e-6 * sigma_d0[None, :]
+    t_first = np.full((nt, n), np.nan)
+    for i in range(nt):
+        first = formed[: i + 1].argmax(axis=0)
+        t_first[i] = np.where(formed[: i + 1].any(axis=0), time[first], np.nan)
+    m_coag, m_si = coag @ area, si @ area
+    r_mon = np.array([SNOW_AU, 3.2, 10.0, 30.0, r_f[0]])
+    m_through = (ref["m_dust"][0] - ref["m_dust"])[:, None] * np.linspace(1.6, 1.0, 5)[None, :]
+    flux = np.gradient(m_through, time * YR, axis=0)
+    ts_time = np.concatenate([np.linspace(t0, t1, 5)[1:] for t0, t1 in zip(time[:-1], time[1:])])
+    interp = lambda y: np.stack([np.interp(ts_time, time, c) for c in np.atleast_2d(y.T)], axis=1)
+    dust = np.interp(ts_time, time, ref["m_dust"])
+    pl_c, pl_s = np.interp(ts_time, time, m_coag), np.interp(ts_time, time, m_si)
+    inner = np.interp(ts_time, time, m_through[:, -1])
+    sublimated = np.zeros_like(dust)
+    error = np.abs(dust + pl_c + pl_s + inner + sublimated - ref["m_dust"][0])
+    budget = np.stack([dust, pl_c, pl_s, inner, sublimated, error], axis=1) / M_EARTH
+    series = {"time": ts_time, "pebble_flux": interp(flux) / (M_EARTH / MYR),
+              "m_through": interp(m_through) / M_EARTH, "mass_budget": budget}
+    with h5py.File(path, "a") as f:
+        snap = f["snapshots"]
+        write_dataset(snap, "phi", np.full((nt, n), 0.3), "", "filling factor", extendible=True)
+        write_dataset(snap, "pebble_flux", flux, "g s^-1", "inward dust flow", extendible=True)
+        write_dataset(snap, "m_through", m_through, "g", "cumulative", extendible=True)
+        if planetesimals is not None:
+            for name, data, units in (("sigma_pl", coag + si, "g cm^-2"),
+                                      ("sigma_pl_coag", coag, "g cm^-2"),
+                                      ("sigma_pl_si", si, "g cm^-2"), ("m_pl_coag", m_coag, "g"),
+                                      ("m_pl_si", m_si, "g"), ("t_first_pl", t_first, "yr")):
+                write_dataset(snap, name, data, units, name, extendible=True)
+        peb = f.create_group("pebbles")
+        write_dataset(peb, "r_au", r_mon, "au", "monitor radii")
+        peb.attrs["names"] = ";".join(MONITORS) if names is None else names
+        ts = f.create_group("timeseries")
+        for name, data in series.items():
+            data = data[:-2] if killed and name == "time" else data
+            write_dataset(ts, name, data, {"time": "yr", "pebble_flux": "M_earth Myr^-1"}.get(
+                name, "M_earth"), f"synthetic {name}", extendible=True)
+        if not killed:
+            summary = f.create_group("summary")
+            scalars = {"m_pl_coag": m_coag[-1] / M_EARTH, "m_pl_si": m_si[-1] / M_EARTH,
+                       "m_peb_snowline": m_through[-1, 0] / M_EARTH,
+                       "m_peb_r_in": m_through[-1, -1] / M_EARTH,
+                       "m_dust_final": ref["m_dust"][-1] / M_EARTH,
+                       "budget_error": error[-1] / ref["m_dust"][0]}
+            for c, mask in (("coag", coag[-1] > 1e-6 * sigma_d0), ("si", si[-1] > 1e-6 * sigma_d0)):
+                scalars[f"r_min_pl_{c}"] = r_c[mask].min() if mask.any() else np.nan
+                scalars[f"r_max_pl_{c}"] = r_c[mask].max() if mask.any() else np.nan
+            for name, value in scalars.items():
+                write_dataset(summary, name, [value], "", name)
+            write_dataset(summary, "t_first_pl", t_first[-1], "yr", "first formation")
+    return {"series": series, "r_mon": r_mon, "t_first": t_first[-1], "m_coag": m_coag,
+            "n_series": len(ts_time) - (2 if killed else 0)}
+
+
+def write_full_run(path, planetesimals="formed", killed=False, names=None, time_yr=None):
+    """write_run + add_diagnostics; returns (write_run dict, add_diagnostics dict)."""
+    ref = write_run(path, killed=killed, time_yr=time_yr)
+    return ref, add_diagnostics(path, ref, planetesimals, killed, names)
+
+
+def run_plot_run(argv):
+    """plot_run.main(argv) -> (status, written paths, stderr text)."""
+    with contextlib.redirect_stdout(io.StringIO()) as out, \
+            contextlib.redirect_stderr(io.StringIO()) as err:
+        status = plot_run.main(argv)
+    return status, out.getvalue().split(), err.getvalue()
+
+
+ALL_PNGS = ["sigma_d.png", "dust_to_gas.png", "rt_St.png", "rt_a.png", "rt_phi.png",
+            "rt_dust_to_gas.png", "pebble_flux.png", "sigma_pl.png", "mass_budget.png"]
+
+
 # --- checks: each returns a one-line description of what it verified --------------------
 
 def check_reader_complete(tmp):
@@ -149,6 +246,161 @@ def check_reader_killed(tmp):
     assert run.solver == {}
     assert any("unequal lengths" in str(w.message) for w in caught), [str(w.message) for w in caught]
     return f"reader: killed run (sigma_g one row short, no /solver) cut to {nt} rows, warned"
+
+
+def check_reader_new_groups(tmp):
+    path = os.path.join(tmp, "groups.h5")
+    ref, diag = write_full_run(path)
+    run = reader.load_run(path)
+    assert set(run.timeseries) == {"time", "pebble_flux", "m_through", "mass_budget"}
+    for name, data in diag["series"].items():
+        assert np.array_equal(run.timeseries[name], data), name
+    assert run.timeseries["mass_budget"].shape == (len(diag["series"]["time"]), 6)
+    assert run.pebble_names == list(MONITORS), run.pebble_names
+    assert np.array_equal(run.monitor_r_au, diag["r_mon"]) and set(run.pebbles) == {"r_au"}
+    assert isinstance(run.summary["m_pl_coag"], float) and run.summary["m_pl_coag"] > 0
+    assert np.isnan(run.summary["r_min_pl_si"]) or run.summary["r_min_pl_si"] >= 3.0
+    assert np.array_equal(run.summary["t_first_pl"], diag["t_first"], equal_nan=True)
+    assert run.units["timeseries/pebble_flux"] == "M_earth Myr^-1"
+    assert run.descriptions["timeseries/mass_budget"] == "synthetic mass_budget"
+    assert run.field("timeseries/m_through") is run.timeseries["m_through"]
+    assert run.field("budget_error") == run.summary["budget_error"]
+    assert run.field("pebble_flux") is run.snapshots["pebble_flux"]   # snapshots first
+    assert run.finished and run.n_snapshots == len(ref["time"])
+    return (f"reader: /timeseries ({len(run.timeseries['time'])} rows), /pebbles "
+            f"({len(run.pebble_names)} named monitors), /summary ({len(run.summary)} entries)")
+
+
+def check_reader_groups_absent(tmp):
+    path = os.path.join(tmp, "old_layout.h5")
+    write_run(path)
+    run = reader.load_run(path)
+    assert run.timeseries == {} and run.pebbles == {} and run.summary == {}
+    assert run.pebble_names == [] and run.monitor_r_au.size == 0
+    assert run.finished     # /solver is there
+    return "reader: file without /timeseries, /pebbles, /summary gives empty dicts"
+
+
+def check_reader_timeseries_killed(tmp):
+    path = os.path.join(tmp, "killed_groups.h5")
+    ref, diag = write_full_run(path, killed=True)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run = reader.load_run(path)
+    ns = diag["n_series"]
+    assert all(a.shape[0] == ns for a in run.timeseries.values()), ns
+    assert np.array_equal(run.timeseries["mass_budget"], diag["series"]["mass_budget"][:ns])
+    messages = [str(w.message) for w in caught]
+    assert any("/timeseries datasets have unequal lengths" in m for m in messages), messages
+    assert run.summary == {} and not run.finished
+    assert run.n_snapshots == len(ref["time"]) - 1
+    return f"reader: killed run, /timeseries cut to its {ns} time rows (warned), no /summary"
+
+
+def check_reader_monitor_names(tmp):
+    path = os.path.join(tmp, "bad_names.h5")
+    write_full_run(path, names="snow line;r_in")      # 2 names for 5 radii
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run = reader.load_run(path)
+    assert run.pebble_names == [f"{r:.3g} au" for r in run.monitor_r_au], run.pebble_names
+    assert any("do not match" in str(w.message) for w in caught)
+    return "reader: /pebbles names that do not match r_au fall back to the radii, warned"
+
+
+def check_plot_run_full(tmp):
+    path = os.path.join(tmp, "full_run.h5")
+    write_full_run(path)
+    status, written, err = run_plot_run([path])
+    outdir = os.path.join(tmp, "full_run_plots")
+    assert status == 0, err
+    assert written == [os.path.join(outdir, name) for name in ALL_PNGS], (written, err)
+    assert all(_is_png(p) for p in written) and err == "", err
+    status, written, _ = run_plot_run([path, "-o", os.path.join(tmp, "elsewhere")])
+    assert status == 0 and len(written) == len(ALL_PNGS)
+    assert all(p.startswith(os.path.join(tmp, "elsewhere")) for p in written)
+    return f"plot_run.main writes all {len(ALL_PNGS)} PNGs (default outdir and -o)"
+
+
+def check_plot_run_transport_only(tmp):
+    path = os.path.join(tmp, "transport.h5")
+    write_run(path)           # older layout: no phi, no planetesimals, no /timeseries
+    status, written, err = run_plot_run([path])
+    names = [os.path.basename(p) for p in written]
+    assert status == 0, err
+    assert names == ["sigma_d.png", "dust_to_gas.png", "rt_St.png", "rt_a.png",
+                     "rt_dust_to_gas.png", "mass_budget.png"], (names, err)
+    assert all(_is_png(p) for p in written)
+    for skipped in ("rt_phi.png", "pebble_flux.png", "sigma_pl.png"):
+        assert f"skipped {skipped}" in err, err
+    return "plot_run.main on an older transport-only file: 6 PNGs, 3 skipped with a note"
+
+
+def check_plot_run_degraded(tmp):
+    results = []
+    for label, options in (("no planetesimals formed", {"planetesimals": "none"}),
+                           ("planetesimals off", {"planetesimals": None}),
+                           ("killed run", {"killed": True})):
+        path = os.path.join(tmp, f"degraded_{len(results)}.h5")
+        write_full_run(path, **options)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            status, written, err = run_plot_run([path])
+        names = [os.path.basename(p) for p in written]
+        expected = [n for n in ALL_PNGS if not (options.get("planetesimals", "") is None
+                                                 and n == "sigma_pl.png")]
+        assert status == 0 and names == expected, (label, names, err)
+        assert all(_is_png(p) for p in written), label
+        results.append(f"{label}: {len(names)}")
+    return "plot_run.main degrades gracefully (" + ", ".join(results) + " PNGs)"
+
+
+def check_plot_run_failure_status(tmp):
+    path = os.path.join(tmp, "failing.h5")
+    write_full_run(path)
+    original = plot_run.plot_sigma_pl
+
+    def broken(run, out_path):
+        raise RuntimeError("deliberate failure")
+    plot_run.plot_sigma_pl = broken
+    try:
+        status, written, err = run_plot_run([path, "-o", os.path.join(tmp, "failing")])
+    finally:
+        plot_run.plot_sigma_pl = original
+    assert status == 1 and "FAILED sigma_pl.png" in err and "deliberate failure" in err, err
+    assert len(written) == len(ALL_PNGS) - 1 and all(_is_png(p) for p in written), written
+    return "plot_run.main: a failing figure is reported, the others written, exit status 1"
+
+
+def check_plot_run_single_snapshot(tmp):
+    path = os.path.join(tmp, "single_full.h5")
+    write_run(path, time_yr=np.array([0.0]))
+    status, written, err = run_plot_run([path])
+    names = [os.path.basename(p) for p in written]
+    assert status == 0 and names == ["sigma_d.png", "dust_to_gas.png"], (names, err)
+    assert err.count("skipped") == len(ALL_PNGS) - 2, err
+    return "plot_run.main with nt == 1 (t = 0 only): Sigma_d figures, the rest skipped"
+
+
+def check_plot_run_helpers(tmp):
+    edges = plot_run.time_edges(np.array([10.0, 100.0, 1000.0]))
+    assert np.allclose(edges, [10 ** 0.5, 10 ** 1.5, 10 ** 2.5, 10 ** 3.5])
+    assert np.allclose(plot_run.time_edges(np.array([100.0])), [10 ** 1.5, 10 ** 2.5])
+    mask = np.array([[True, True, False, True],
+                     [False, True, False, False]])
+    x, y = np.arange(5.0), np.arange(3.0)
+    boxes = plot_run.mask_rectangles(mask, x, y)
+    assert boxes == [[(0, 0), (2, 0), (2, 1), (0, 1)], [(3, 0), (4, 0), (4, 1), (3, 1)],
+                     [(1, 1), (2, 1), (2, 2), (1, 2)]], boxes
+    # perimeter of the True region: 2x1 block (6) + 1x1 block (4) + 1x1 below (4) - shared 2
+    assert len(plot_run.mask_outline(mask, x, y)) == 12
+    lo, hi, extend = plot_run.log_limits(np.geomspace(1e-10, 1.0, 1001), 6)
+    assert np.isclose(hi, np.percentile(np.geomspace(1e-10, 1.0, 1001), 99.5))
+    assert np.isclose(lo, hi * 1e-6) and extend == "both"
+    assert plot_run.log_limits(np.full(5, 2.0), 6) == (0.2, 2.0, "neither")
+    assert plot_run.log_limits(np.array([0.0, np.nan]), 6) is None
+    assert plot_run.unit_tex("g cm^-2") == "g cm$^{-2}$" and plot_run.unit_tex("") == ""
+    return "plot_run helpers: time_edges, mask_rectangles, mask_outline, log_limits, unit_tex"
 
 
 def check_i0e_vs_numpy(tmp):
@@ -264,9 +516,13 @@ def _is_png(path):
         return f.read(8) == b"\x89PNG\r\n\x1a\n"
 
 
-CHECKS = [check_reader_complete, check_reader_killed, check_i0e_vs_numpy, check_i0e_large_x,
-          check_ring_mass, check_ring_gaussian_limit, check_lbp, check_drift_velocity,
-          check_snapshot_selection, check_plot, check_plot_single_snapshot]
+CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
+          check_reader_groups_absent, check_reader_timeseries_killed, check_reader_monitor_names,
+          check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
+          check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
+          check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full,
+          check_plot_run_transport_only, check_plot_run_degraded,
+          check_plot_run_failure_status, check_plot_run_single_snapshot]
 
 
 def main():

@@ -1,5 +1,6 @@
 #include "src/diagnostics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -16,7 +17,10 @@ using units::kYr;
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// A cell has formed planetesimals once 1 ppm of its initial dust has been converted.
+// A cell has formed planetesimals once its Sigma_pl exceeds 1e-6 of the largest initial
+// Sigma_d of the disk. (A threshold relative to the cell's own dust would count the
+// outer edge of an LBP disk, where the gas is so thin that monomers already have
+// St > St_pl and a negligible mass is converted at once.)
 constexpr double kFormedFraction = 1e-6;
 // 1 M_earth / Myr in g/s (spec §8: 1.892e14 g/s)
 constexpr double kMearthPerMyr = units::kMearth / units::kMyr;
@@ -41,7 +45,9 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
   const auto y0 = sim.initial_state();
   const auto& L = sim.model().layout();
   const int sd = *L.find_cell_var("sigma_d");
-  for (int i = 0; i < n; ++i) threshold_.push_back(kFormedFraction * y0[L.index(i, sd)]);
+  double sigma_max = 0.0;
+  for (int i = 0; i < n; ++i) sigma_max = std::max(sigma_max, y0[L.index(i, sd)]);
+  threshold_.assign(n, kFormedFraction * sigma_max);
 
   const std::size_t nm = sim.pebble_monitors().size();
   out_.add_series("timeseries", "time", 0, "yr",
@@ -174,6 +180,9 @@ std::string RunDiagnostics::finish(double t, std::span<const double> y) {
     txt << "  pebbles through " << mons[k].name << " (" << mons[k].r_au
         << " au): " << mass[k] / kMearth << " M_earth\n";
   }
+  scalar("formed_threshold", threshold_.empty() ? 0.0 : threshold_[0], "g cm^-2",
+         "Sigma_pl above which a cell counts as having formed planetesimals (1e-6 of the "
+         "largest initial Sigma_d)");
   scalar("m_dust_final", sim_.dust_mass_on_grid(y) / kMearth, "M_earth",
          "dust left on the grid");
   scalar("budget_error", sim_.budget_error(y), "",

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "disk/gas_disk.hpp"
@@ -294,6 +295,23 @@ Simulation::Simulation(const Config& cfg)
   modules.push_back(std::move(transport));
   layout_->freeze();
   model_ = std::make_unique<DiskModel>(layout_, std::move(modules));
+  model_->set_describer(
+      [this](long index, std::span<const double> y) { return describe_state(index, y); });
+}
+
+std::string Simulation::describe_state(long index, std::span<const double> y) const {
+  const auto& L = *layout_;
+  const int i = L.cell_of(index);
+  if (i < 0 || y.size() < static_cast<std::size_t>(L.size())) return "";
+  const double* yc = &y[L.index(i, 0)];
+  std::ostringstream s;
+  s.precision(4);
+  s << "r = " << grid_.r_c(i) / kAu << " au, Sigma_d = " << yc[transport_->sigma_slot()]
+    << " g cm^-2";
+  if (gas_.evolves()) s << ", Sigma_g = " << gas_.sigma(i, yc) << " g cm^-2";
+  if (growth_) s << ", m = " << codec_->mass(i, yc) << " g, phi = " << codec_->phi(yc);
+  s << ", St = " << stokes_->St(i, yc);
+  return s.str();
 }
 
 Simulation::~Simulation() = default;
@@ -407,7 +425,7 @@ void Simulation::prepare_output(RunOutput& out) const {
     out.add_field(
         "t_first_pl", n, "yr",
         "time of first planetesimal formation in each cell so far (NaN: not yet; "
-        "formed = 1e-6 of the initial dust converted)");
+        "formed: Sigma_pl > /summary/formed_threshold)");
     out.add_field("m_pl_coag", 0, "g", "planetesimal mass by direct coagulation");
     out.add_field("m_pl_si", 0, "g", "planetesimal mass by streaming instability");
   }
@@ -419,7 +437,7 @@ void Simulation::prepare_output(RunOutput& out) const {
     out.add_field("a", n, "cm", "radius of the mass-dominating particle");
     out.add_field("rho_int", n, "g cm^-3", "internal density phi rho0");
     out.add_field("dv", n, "cm s^-1", "collision speed used for growth (spec §3)");
-    out.add_field("t_grow", n, "yr", "growth time m/|dm/dt|");
+    out.add_field("t_grow", n, "yr", "growth time m/|dm/dt| (inf: growth halted)");
   }
 }
 
@@ -469,7 +487,9 @@ std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
       a[i] = r.a;
       rho[i] = phi[i] * species_[i].rho0;
       dv[i] = r.dv;
-      tg[i] = m[i] / std::max(std::abs(r.dm_dt), 1e-300) / kYr;
+      // +inf where growth has halted exactly (a saturated erosion switch gives dm/dt = 0)
+      tg[i] = r.dm_dt != 0.0 ? m[i] / std::abs(r.dm_dt) / kYr
+                             : std::numeric_limits<double>::infinity();
     }
     f["m"] = std::move(m);
     f["phi"] = std::move(phi);

@@ -26,7 +26,10 @@ int main(int argc, char** argv) {
               "us/(cell step)");
   for (int n : {100, 300, 1000, 3000, 10000}) {
     const std::vector<std::string> sets{"grid.n_cells=" + std::to_string(n),
-                                        "growth.enabled=false", "porosity.enabled=false",
+                                        "growth.enabled=false",
+                                        "porosity.enabled=false",
+                                        "planetesimals.coagulation=false",
+                                        "planetesimals.si=\"none\"",
                                         "transport.St=0.01"};
     const Config cfg = load_scene(scene, sets);
     std::vector<double> walls;

@@ -16,7 +16,8 @@ from common import REPO, Checks, load_run, parse_args, run  # noqa: E402
 
 # Slow enough to be caught mid-run: many cells, tight tolerance, many snapshots.
 # Transport alone (growth off) keeps the reference run short.
-SETS = ["growth.enabled=false", "porosity.enabled=false", "grid.n_cells=3000",
+SETS = ["growth.enabled=false", "porosity.enabled=false", "planetesimals.coagulation=false",
+        'planetesimals.si="none"', "grid.n_cells=3000",
         "solver.rtol=1e-10", "output.n_snapshots=400", "output.t_end_yr=1e7",
         "transport.St=0.05"]
 

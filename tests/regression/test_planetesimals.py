@@ -82,7 +82,7 @@ def main():
             "summary pebble mass through r_in = m_out_inner")
     c.check(np.isclose(float(np.ravel(summ["m_dust_final"])[0]), s["m_dust"][-1] / me, rtol=1e-12),
             "summary final dust mass = m_dust")
-    formed = s["sigma_pl"][-1] > 1e-6 * s["sigma_d"][0]
+    formed = s["sigma_pl"][-1] > float(np.ravel(summ["formed_threshold"])[0])
     t_first = np.ravel(summ["t_first_pl"])
     c.check(np.array_equal(formed, np.isfinite(t_first)),
             "first-formation times exist exactly where planetesimals formed")
