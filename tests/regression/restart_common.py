@@ -51,19 +51,24 @@ def copy_run(out, dest, files=("output", "chk", "prev")):
         shutil.copyfile(src, dst)
 
 
-def snapshot_differences(a, b):
-    """Names of the /snapshots datasets that differ between files a and b in shape or in
-    any bit (NaN = NaN), plus those present in only one; [] when identical."""
+def snapshot_differences(a, b, groups=("snapshots",)):
+    """Names of the datasets of `groups` (default /snapshots) that differ between files a
+    and b in shape or in any bit (NaN = NaN), plus those present in only one; [] when
+    identical."""
     diffs = []
     with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
-        ga, gb = fa["snapshots"], fb["snapshots"]
-        for name in sorted(set(ga) | set(gb)):
-            if name not in ga or name not in gb:
-                diffs.append(name + " (missing)")
+        for group in groups:
+            if group not in fa and group not in fb:
                 continue
-            x, y = ga[name][()], gb[name][()]
-            if x.shape != y.shape or not np.array_equal(x.view(np.uint64), y.view(np.uint64)):
-                diffs.append(f"{name} {x.shape} vs {y.shape}")
+            ga, gb = fa.get(group, {}), fb.get(group, {})
+            for name in sorted(set(ga) | set(gb)):
+                if name not in ga or name not in gb:
+                    diffs.append(f"{group}/{name} (missing)")
+                    continue
+                x, y = ga[name][()], gb[name][()]
+                if x.shape != y.shape or not np.array_equal(x.view(np.uint64),
+                                                            y.view(np.uint64)):
+                    diffs.append(f"{group}/{name} {x.shape} vs {y.shape}")
     return diffs
 
 

@@ -10,9 +10,8 @@ import numpy as np
 from common import Checks, parse_args
 from restart_common import checkpoint_of, copy_run, panoptic, rows, times
 
-SCENE = "params/fiducial.toml"
-BASE = ["growth.enabled=false", "porosity.enabled=false", "grid.n_cells=200",
-        "transport.St=0.05", "output.t_end_yr=1e5", "output.n_snapshots=20"]
+SCENE = "params/tests/restart.toml"
+BASE = ["grid.n_cells=200", "output.t_end_yr=1e5", "output.n_snapshots=20"]
 
 
 def main():
@@ -27,6 +26,7 @@ def main():
     refused = {
         "grid.n_cells=250": "grid.n_cells",
         "growth.enabled=true": "growth.enabled",  # also another state layout
+        "snowline.enabled=false": "snowline.enabled",  # one global variable fewer
         "grid.r_out_au=200.0": "grid.r_out_au",
         "disk.alpha=1e-4": "disk.alpha",
         "gas.evolve=true": "gas.evolve",  # also another state layout

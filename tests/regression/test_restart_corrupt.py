@@ -12,9 +12,8 @@ from common import Checks, parse_args
 from restart_common import (checkpoint_attrs, checkpoint_of, copy_run, panoptic,
                             previous_of, rows, snapshot_differences, y_offset)
 
-SCENE = "params/fiducial.toml"
-BASE = ["growth.enabled=false", "porosity.enabled=false", "grid.n_cells=300",
-        "transport.St=0.05"]
+SCENE = "params/tests/restart.toml"
+BASE = []
 
 
 def flip(path, offset, n=4):
