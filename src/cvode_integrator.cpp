@@ -7,6 +7,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdlib>
 #include <numeric>
@@ -29,12 +30,21 @@ std::span<double> as_mut_span(N_Vector v) {
 // No C++ exception may cross these C callbacks: the model's *_nothrow methods return
 // 0 / 1 (recoverable: CVODE retries with a smaller step) / -1 (fatal).
 extern "C" int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
-  return static_cast<DiskModel*>(data)->rhs_nothrow(t, as_span(y), as_mut_span(ydot));
+  return static_cast<CvodeCallbackData*>(data)->model->rhs_nothrow(t, as_span(y),
+                                                                   as_mut_span(ydot));
+}
+
+// The RHS inside the Newton iteration: the same, keeping the iterate, so that a
+// convergence failure can name the components that did not converge.
+extern "C" int nls_rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
+  N_VScale(1.0, y,
+           static_cast<N_Vector>(static_cast<CvodeCallbackData*>(data)->newton_iterate));
+  return rhs_callback(t, y, ydot, data);
 }
 
 extern "C" int jac_callback(sunrealtype t, N_Vector y, N_Vector, SUNMatrix J, void* data,
                             N_Vector, N_Vector, N_Vector) {
-  auto& model = *static_cast<DiskModel*>(data);
+  auto& model = *static_cast<CvodeCallbackData*>(data)->model;
   // CVODE zeroed J including its index arrays: copy the cached pattern every call.
   model.pattern().copy_structure_to(SUNSparseMatrix_IndexPointers(J),
                                     SUNSparseMatrix_IndexValues(J));
@@ -48,6 +58,7 @@ std::string flag_name(int flag) {
   std::free(name);
   if (s == "NONE") s = "CVODE flag " + std::to_string(flag);
   if (flag == CV_CONSTR_FAIL) s = "CV_CONSTR_FAIL";
+  if (flag == CV_WARNING) s = "CV_WARNING (t + h = t)";
   return s;
 }
 
@@ -74,6 +85,8 @@ CvodeIntegrator::CvodeIntegrator(DiskModel& model, double t0, std::span<const do
   sunctx_ = ctx;
   y_ = N_VNew_Serial(n, ctx);
   atol_ = N_VNew_Serial(n, ctx);
+  callback_data_ = {&model_, N_VNew_Serial(n, ctx)};
+  N_VConst(0.0, nv(callback_data_.newton_iterate));
   std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(nv(y_)));
   std::copy(opt_.atol.begin(), opt_.atol.end(), N_VGetArrayPointer(nv(atol_)));
   if (!opt_.constraints.empty() &&
@@ -106,7 +119,8 @@ void CvodeIntegrator::create_cvode(double t0) {
   check(CVodeSetErrHandlerFn(cvode_, cvode_error_handler, this), "CVodeSetErrHandlerFn");
   check(CVodeInit(cvode_, rhs_callback, t0, nv(y_)), "CVodeInit");
   check(CVodeSVtolerances(cvode_, opt_.rtol, nv(atol_)), "CVodeSVtolerances");
-  check(CVodeSetUserData(cvode_, &model_), "CVodeSetUserData");
+  check(CVodeSetUserData(cvode_, &callback_data_), "CVodeSetUserData");
+  check(CVodeSetNlsRhsFn(cvode_, nls_rhs_callback), "CVodeSetNlsRhsFn");
   if (constr_) check(CVodeSetConstraints(cvode_, nv(constr_)), "CVodeSetConstraints");
   const auto& pattern = model_.pattern();
   A_ = SUNSparseMatrix(n, n, pattern.nnz(), CSC_MAT, ctx);
@@ -135,6 +149,7 @@ CvodeIntegrator::~CvodeIntegrator() {
   free_cvode();
   if (constr_) N_VDestroy(nv(constr_));
   N_VDestroy(nv(atol_));
+  N_VDestroy(nv(callback_data_.newton_iterate));
   N_VDestroy(nv(y_));
   SUNContext ctx = static_cast<SUNContext>(sunctx_);
   SUNContext_Free(&ctx);
@@ -156,8 +171,43 @@ void CvodeIntegrator::advance_to(double t_out,
                " is used up; raise it or loosen solver.rtol");
     double t_reached = t_;
     const int flag = CVode(cvode_, t_out, nv(y_), &t_reached, CV_ONE_STEP);
+    const double t_before = t_;
+    t_ = t_reached;  // on a failure: the last time reached, y_ the state there
+    if (flag == CV_CONSTR_FAIL)
+      fail(
+          flag,
+          "every retry of the step drove a non-negative variable (Sigma_d, Sigma_pl or a "
+          "booked mass) below zero; a tighter solver.rtol may get past it");
     if (flag < 0) fail(flag, "");
-    t_ = t_reached;
+    // Steps below the round-off of t (CVODE warns "t + h = t" and goes on) do not
+    // advance the solution: where the right-hand side stops being finite just ahead (a
+    // singularity), every step shrinks to fit in front of it and the run would spin
+    // until solver.max_steps. Stop after kMaxStalledSteps of them.
+    stalled_ = t_ - t_before <= 4.0 * DBL_EPSILON * std::abs(t_) ? stalled_ + 1 : 0;
+    if (stalled_ >= kMaxStalledSteps)
+      fail(CV_WARNING, "t + h = t for " + std::to_string(stalled_) +
+                           " steps in a row: the step size fell below the round-off of t "
+                           "and the solution cannot advance (a singularity ahead, or a "
+                           "state where the right-hand side is not finite)");
+    if (std::getenv("PANOPTIC_TRACE")) {  // TEMP-DEBUG
+      double h = 0;
+      CVodeGetLastStep(cvode_, &h);
+      N_Vector ele = N_VClone(nv(y_)), w = N_VClone(nv(y_));
+      CVodeGetEstLocalErrors(cvode_, ele);
+      CVodeGetErrWeights(cvode_, w);
+      const double* e = N_VGetArrayPointer(ele);
+      const double* wt = N_VGetArrayPointer(w);
+      long best = 0;
+      for (long i = 0; i < N_VGetLength(ele); ++i)
+        if (std::abs(e[i] * wt[i]) > std::abs(e[best] * wt[best])) best = i;
+      SolverStats st = stats();
+      std::fprintf(stderr, "TRACE t=%.6e yr h=%.3e s netf=%ld nncf=%ld worst=%s %.3g\n",
+                   t_ / 3.156e7, h, st.netf, st.nncf,
+                   model_.describe(best, as_span(nv(y_))).c_str(),
+                   std::abs(e[best] * wt[best]));
+      N_VDestroy(ele);
+      N_VDestroy(w);
+    }
     if (on_step) on_step(t_, nst + 1);
     if (flag == CV_TSTOP_RETURN) break;
   }
@@ -176,6 +226,7 @@ void CvodeIntegrator::reinit(double t, std::span<const double> y) {
   free_cvode();
   create_cvode(t);
   t_ = t;
+  stalled_ = 0;
 }
 
 void CvodeIntegrator::carry_stats(const SolverStats& before) {
@@ -226,26 +277,41 @@ void CvodeIntegrator::fail(int flag, const std::string& what) {
   if (!what.empty()) msg << ": " << what;
   if (!cvode_message_.empty()) msg << "\n  CVODE says: " << cvode_message_;
   if (!model_.last_error().empty()) msg << "\n  model says: " << model_.last_error();
-  // Components with the largest weighted local error estimate |ele_i| w_i.
+  // The components that failed, each with the physical state of its cell at the last
+  // time reached (DiskModel::describe), ranked by a weighted score s_i w_i (w: CVODE's
+  // error weights). After a convergence failure s_i = |y_iter - y|: how far the last
+  // Newton iterate of the failed step moved from y. Otherwise s_i is CVODE's local
+  // error estimate (tq[2] times its correction; after an error-test failure: that of
+  // the failed attempt).
   const auto n = static_cast<sunindextype>(layout.size());
   N_Vector ele = N_VClone(nv(y_)), w = N_VClone(nv(y_));
   if (CVodeGetEstLocalErrors(cvode_, ele) == CV_SUCCESS &&
       CVodeGetErrWeights(cvode_, w) == CV_SUCCESS) {
-    const double* e = N_VGetArrayPointer(ele);
     const double* wt = N_VGetArrayPointer(w);
     const double* y = N_VGetArrayPointer(nv(y_));
+    const double* iter = N_VGetArrayPointer(nv(callback_data_.newton_iterate));
+    const bool newton = flag == CV_CONV_FAILURE;
+    if (newton) N_VLinearSum(1.0, nv(callback_data_.newton_iterate), -1.0, nv(y_), ele);
+    const double* e = N_VGetArrayPointer(ele);
     std::vector<long> idx(n);
     std::iota(idx.begin(), idx.end(), 0L);
     const auto k = std::min<std::size_t>(10, idx.size());
-    std::partial_sort(idx.begin(), idx.begin() + k, idx.end(), [&](long a, long b) {
-      return std::abs(e[a] * wt[a]) > std::abs(e[b] * wt[b]);
-    });
-    msg << "\n  largest weighted local errors:";
+    const auto score = [&](long i) {
+      const double x = std::abs(e[i] * wt[i]);
+      return std::isnan(x) ? HUGE_VAL : x;  // non-finite iterates first
+    };
+    std::partial_sort(idx.begin(), idx.begin() + k, idx.end(),
+                      [&](long a, long b) { return score(a) > score(b); });
+    msg << (newton ? "\n  Newton iterate of the failed step, largest weighted distances "
+                     "from the state:"
+                   : "\n  largest weighted local errors:");
     for (std::size_t j = 0; j < k; ++j) {
       const long i = idx[j];
-      msg << "\n    " << layout.describe(i) << ": weighted error "
-          << std::abs(e[i] * wt[i]) << ", value " << y[i] << " "
-          << layout.info_of(i).units;
+      msg << "\n    " << model_.describe(i, {y, static_cast<std::size_t>(n)}) << ": "
+          << (newton ? "weighted distance " : "weighted error ")
+          << std::abs(e[i] * wt[i]);
+      if (newton) msg << ", iterate " << iter[i];
+      msg << ", value " << y[i] << " " << layout.info_of(i).units;
     }
   }
   N_VDestroy(ele);

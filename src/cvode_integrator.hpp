@@ -24,6 +24,12 @@ struct SolverStats {
   double h_last = 0.0;  //!< last step size [s]
 };
 
+//! What the CVODE callbacks receive as user data.
+struct CvodeCallbackData {
+  DiskModel* model = nullptr;
+  void* newton_iterate = nullptr;  //!< N_Vector: y of the last nonlinear-solver RHS call
+};
+
 struct IntegratorOptions {
   double rtol = 1e-6;
   std::vector<double> atol;         //!< per component
@@ -43,7 +49,7 @@ class CvodeIntegrator {
   //! Integrates to exactly t_out (CVODE stop time). `on_step(t, nst)` is called after
   //! every internal step. Throws SolverError with the flag name, the time, CVODE's
   //! message, the model's message and the components with the largest weighted local
-  //! error.
+  //! error, each with the physical state of its cell (DiskModel::describe).
   void advance_to(double t_out, const std::function<void(double, long)>& on_step = {});
   //! Restarts the integrator (order 1, fresh history) from (t, y), exactly as a new
   //! integrator built at (t, y): this is what makes a run restarted from a checkpoint
@@ -80,7 +86,11 @@ class CvodeIntegrator {
   void* A_ = nullptr;       // SUNMatrix
   void* LS_ = nullptr;      // SUNLinearSolver
   void* cvode_ = nullptr;
+  CvodeCallbackData callback_data_;  // newton_iterate: for the report of a failure
   std::string cvode_message_;
+  //! Steps in a row that did not advance t (below its round-off); see advance_to.
+  static constexpr int kMaxStalledSteps = 100;
+  int stalled_ = 0;
   friend void cvode_error_handler(int, const char*, const char*, char*, void*);
 };
 

@@ -42,12 +42,25 @@ void DiskModel::jacobian(double t, std::span<const double> y,
   for (const auto& m : modules_) m->add_jacobian(t, y, jac);
 }
 
+std::string DiskModel::describe(long index, std::span<const double> y) const noexcept {
+  try {
+    std::string s = layout_->describe(index);
+    if (describer_) {
+      const std::string state = describer_(index, y);
+      if (!state.empty()) s += " (" + state + ")";
+    }
+    return s;
+  } catch (...) {
+    return "component " + std::to_string(index);
+  }
+}
+
 int DiskModel::rhs_nothrow(double t, std::span<const double> y,
                            std::span<double> ydot) noexcept {
   try {
     rhs(t, y, ydot);
     if (const long i = first_non_finite(ydot); i >= 0) {
-      last_error_ = "non-finite right-hand side for " + layout_->describe(i);
+      last_error_ = "non-finite right-hand side for " + describe(i, y);
       return 1;
     }
     return 0;
@@ -63,8 +76,15 @@ int DiskModel::jacobian_nothrow(double t, std::span<const double> y,
                                 std::span<double> values) noexcept {
   try {
     jacobian(t, y, values);
-    if (first_non_finite(values) >= 0) {
-      last_error_ = "non-finite Jacobian entry";
+    if (const long k = first_non_finite(values); k >= 0) {
+      // the row of value k: the column is the one whose range holds k
+      const auto cols = pattern_.col_ptr();
+      const long col = static_cast<long>(std::upper_bound(cols.begin(), cols.end(), k) -
+                                         cols.begin()) -
+                       1;
+      last_error_ = "non-finite Jacobian entry d(" +
+                    describe(static_cast<long>(pattern_.row_index()[k]), y) + ")/d(" +
+                    layout_->describe(col) + ")";
       return 1;
     }
     return 0;

@@ -1,6 +1,7 @@
 #pragma once
 //! The ODE system CVODE integrates: the sum of the scene's physics modules on one state
 //! layout (style guide "DiskModel : OdeSystem"). Owns the sparsity pattern, built once.
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -33,11 +34,21 @@ class DiskModel {
                        std::span<double> values) noexcept;
   const std::string& last_error() const { return last_error_; }
 
+  //! The physical state of the cell of component `index` at state y, for failure
+  //! messages ("r = 3.1 au, Sigma_d = ..., m = ..., phi = ..., St = ..."; empty for a
+  //! global variable). Set by the Simulation, which knows the grid and the particles.
+  using Describer = std::function<std::string(long index, std::span<const double> y)>;
+  void set_describer(Describer describer) { describer_ = std::move(describer); }
+  //! "q_m in cell 17 (r = 3.1 au, Sigma_d = ...)": the layout's name of component
+  //! `index` and, with a describer, the physical state there. Never throws.
+  std::string describe(long index, std::span<const double> y) const noexcept;
+
  private:
   std::shared_ptr<const StateLayout> layout_;
   std::vector<std::unique_ptr<PhysicsModule>> modules_;
   SparsityPattern pattern_;
   std::string last_error_;
+  Describer describer_;
 };
 
 }  // namespace panoptic

@@ -204,6 +204,9 @@ Simulation::Simulation(const Config& cfg)
   // Below this Sigma_d the ratios Q/Sigma_d are noise: 1e-3 of CVODE's absolute
   // tolerance.
   codec_->eps_sigma = 1e-3 * cfg.real("solver.atol_sigma") * sigma_d_max;
+  if (const char* e = std::getenv("PANOPTIC_EPSF"))
+    codec_->eps_sigma =
+        std::atof(e) * cfg.real("solver.atol_sigma") * sigma_d_max;  // TEMP-DEBUG
 
   // Stokes number: from the particles of the growth model (spec §2), or prescribed.
   const bool growth = cfg.flag("growth.enabled");

@@ -91,6 +91,10 @@ class Simulation {
   double budget_error(std::span<const double> y) const;
   //! One-paragraph summary for `panoptic check` and the run header.
   std::string summary() const;
+  //! The physical state of the cell of component `index` at state y, for failure
+  //! messages: "r = 3.1 au, Sigma_d = 0.2 g cm^-2, m = 5e3 g, phi = 1e-3, St = 0.02"
+  //! (empty for a global variable). The DiskModel's describer.
+  std::string describe_state(long index, std::span<const double> y) const;
 
  private:
   Config cfg_;

@@ -126,3 +126,55 @@ TEST(Integrator, StepBudgetGivesSolverError) {
     EXPECT_NE(msg.find("y in cell 0"), std::string::npos) << msg;
   }
 }
+
+namespace {
+
+//! y' = -y until t = 1, a non-finite right-hand side after: CVODE shrinks its steps to
+//! fit in front of t = 1 and would never get past it.
+class NonFiniteAfterOne : public PhysicsModule {
+ public:
+  explicit NonFiniteAfterOne(StateLayout& layout) {
+    layout.add_cell_var({"y", "g", "", 1.0, true});
+  }
+  std::string_view name() const override { return "non_finite_after_one"; }
+  void declare_pattern(PatternBuilder& p) const override { p.add(0, 0); }
+  void add_rhs(double t, std::span<const double> y,
+               std::span<double> ydot) const override {
+    ydot[0] += t < 1.0 ? -y[0] : std::nan("");
+  }
+  void add_jacobian(double, std::span<const double>, JacobianValues& jac) const override {
+    jac.add(0, 0, -1.0);
+  }
+};
+
+}  // namespace
+
+TEST(Integrator, StalledStepsStopWithTheStateOfTheFailingCell) {
+  auto layout = std::make_shared<StateLayout>(1);
+  std::vector<std::unique_ptr<PhysicsModule>> mods;
+  mods.push_back(std::make_unique<NonFiniteAfterOne>(*layout));
+  layout->freeze();
+  DiskModel model(layout, std::move(mods));
+  model.set_describer([](long i, std::span<const double> y) {
+    return "physical state y = " + std::to_string(y[i]);
+  });
+  IntegratorOptions opt;
+  opt.atol = {1e-10};
+  const double y0[1] = {1.0};
+  CvodeIntegrator cvode(model, 0.0, y0, opt);
+  try {
+    cvode.advance_to(2.0);
+    FAIL() << "expected a SolverError";
+  } catch (const SolverError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("CV_WARNING (t + h = t)"), std::string::npos) << msg;
+    // the model's message and the error list name the cell, the variable and its state
+    EXPECT_NE(msg.find("non-finite right-hand side for y in cell 0 (physical state y = "),
+              std::string::npos)
+        << msg;
+    EXPECT_NE(msg.find("y in cell 0 (physical state y = 0.3678"), std::string::npos)
+        << msg;
+    EXPECT_NEAR(cvode.time(), 1.0, 1e-12);
+  }
+  EXPECT_LT(cvode.stats().nst, 2000) << "stopped long before solver.max_steps";
+}
