@@ -231,20 +231,23 @@ std::vector<KeySpec> make_keys() {
       positive("planetesimals.St_pl", "10.0", "", "St threshold of direct coagulation"),
       positive("planetesimals.tau_pl_omega", "10.0", "",
                "conversion time of direct coagulation in units of 1/Omega_K"),
-      choice("planetesimals.si", "none", {"none", "d16", "s18"},
-             "streaming instability: d16 = Drazkowska et al. 2016 (zeta Sigma_d Omega for "
-             "St >= 0.01), s18 = Schoonenberg et al. 2018 (zeta Sigma_d St Omega), both "
-             "when the midplane rho_d/rho_g >= eps_crit (spec §7.2)"),
+      choice(
+          "planetesimals.si", "none", {"none", "d16", "s18"},
+          "streaming instability: d16 = Drazkowska et al. 2016 (zeta Sigma_d Omega for "
+          "St >= 0.01), s18 = Schoonenberg et al. 2018 (zeta Sigma_d St Omega), both "
+          "when the midplane rho_d/rho_g >= eps_crit (spec §7.2)"),
       positive("planetesimals.zeta_d16", "0.01", "", "d16 efficiency"),
       positive("planetesimals.zeta_s18", "0.1", "", "s18 efficiency"),
       positive("planetesimals.St_si_min", "0.01", "", "d16: smallest St that takes part"),
-      positive("planetesimals.eps_crit", "1.0", "", "midplane rho_d/rho_g that triggers SI"),
+      positive("planetesimals.eps_crit", "1.0", "",
+               "midplane rho_d/rho_g that triggers SI"),
 
       // [pebbles] spec §8
-      real_list("pebbles.radii_au", "au",
-                "radii where the pebble flux is recorded; empty = the snow line, 1, 3, 10, "
-                "30 au and r_in (those inside the grid)",
-                0.0),
+      real_list(
+          "pebbles.radii_au", "au",
+          "radii where the pebble flux is recorded; empty = the snow line, 1, 3, 10, "
+          "30 au and r_in (those inside the grid)",
+          0.0),
       integer("pebbles.samples_per_snapshot", "10",
               "pebble-flux samples (/timeseries) per snapshot interval", 1, 1e5),
 
