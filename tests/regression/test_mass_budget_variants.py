@@ -1,12 +1,21 @@
-"""The mass budget of test_mass_budget.py for variants of the fiducial scene: a loose
-tolerance (the budget is exact in the discretisation, not a consequence of accuracy),
-evolving gas, and transport alone with a radially varying St."""
-from common import Checks, parse_args
+"""The mass budget of test_mass_budget.py for variants: evolving gas, transport alone with
+a radially varying St (both to 1e-12), and a loose tolerance, rtol = 1e-3.
+
+At rtol = 1e-3 the budget is not exact to round-off: CVODE accepts steps whose Sigma_d
+dips below zero by less than its error weights, and the restart of CVODE at every
+snapshot (solver.reinit_at_snapshots) clips those negatives to zero, adding that much
+dust: an error of the size of the absolute tolerance (8e-11 relative with the default
+solver.atol_sigma = 1e-12). The variant therefore sets atol_sigma = 1e-14 and is checked
+against the issue's 1e-10 (measured: 1e-12), not the 1e-12 of the other runs. (It runs
+compact_fragmentation: the fiducial scene at rtol = 1e-3 takes minutes.)
+"""
+import numpy as np
+
+from common import Checks, load_run, parse_args, run
 from test_mass_budget import check_budgets
 
 VARIANTS = [
-    ("fiducial, rtol 1e-3", "params/fiducial.toml", ["solver.rtol=1e-3"]),
-    ("fiducial, viscous gas, 1e5 yr", "params/fiducial.toml",
+    ("compact_fragmentation, viscous gas, 1e5 yr", "params/compact_fragmentation.toml",
      ["gas.evolve=true", "output.t_end_yr=1e5"]),
     ("transport alone, St ∝ r^-1, 64 cells", "params/fiducial.toml",
      ["growth.enabled=false", "porosity.enabled=false", "planetesimals.coagulation=false",
@@ -19,6 +28,14 @@ def main():
     args = parse_args()
     c = Checks()
     check_budgets(VARIANTS, args, c)
+    out = f"{args.workdir}/loose.h5"
+    run(args.exe, "params/compact_fragmentation.toml", out,
+        ["solver.rtol=1e-3", "solver.atol_sigma=1e-14"])
+    s = load_run(out).snapshots
+    m = s["m_dust"] + s["m_out_inner"] + s["m_sublimated"] + s["m_pl_coag"] + s["m_pl_si"]
+    err = np.max(np.abs(m / m[0] - 1))
+    print(f"compact_fragmentation, rtol 1e-3: max budget error {err:.1e}")
+    c.check(err < 1e-10, f"rtol 1e-3: budget closes to 1e-10 ({err:.1e})")
     c.finish()
 
 
