@@ -189,25 +189,6 @@ void CvodeIntegrator::advance_to(double t_out,
                            " steps in a row: the step size fell below the round-off of t "
                            "and the solution cannot advance (a singularity ahead, or a "
                            "state where the right-hand side is not finite)");
-    if (std::getenv("PANOPTIC_TRACE")) {  // TEMP-DEBUG
-      double h = 0;
-      CVodeGetLastStep(cvode_, &h);
-      N_Vector ele = N_VClone(nv(y_)), w = N_VClone(nv(y_));
-      CVodeGetEstLocalErrors(cvode_, ele);
-      CVodeGetErrWeights(cvode_, w);
-      const double* e = N_VGetArrayPointer(ele);
-      const double* wt = N_VGetArrayPointer(w);
-      long best = 0;
-      for (long i = 0; i < N_VGetLength(ele); ++i)
-        if (std::abs(e[i] * wt[i]) > std::abs(e[best] * wt[best])) best = i;
-      SolverStats st = stats();
-      std::fprintf(stderr, "TRACE t=%.6e yr h=%.3e s netf=%ld nncf=%ld worst=%s %.3g\n",
-                   t_ / 3.156e7, h, st.netf, st.nncf,
-                   model_.describe(best, as_span(nv(y_))).c_str(),
-                   std::abs(e[best] * wt[best]));
-      N_VDestroy(ele);
-      N_VDestroy(w);
-    }
     if (on_step) on_step(t_, nst + 1);
     if (flag == CV_TSTOP_RETURN) break;
   }
