@@ -53,7 +53,13 @@ void Planetesimals::cell_rates(int cell, const T* yc, T& coag, T& si) const {
     const T sigma_pos = physics::positive_part<T>(sigma, codec_.eps_sigma);
     const T eps_mid = physics::midplane_dust_to_gas(sigma_pos, h_d, g);
     const T trigger = physics::log_step(eps_mid, opt_.eps_crit, opt_.width_dex);
-    if (opt_.si == StreamingInstability::kD16)  // Drazkowska et al. 2016
+    if (opt_.si == StreamingInstability::kZcrit) {
+      // critical column metallicity (zcrit_lim25): Z / Z_crit(St) >= 1 for St >= 0.01
+      const T z_ratio = sigma_pos / (g.sigma_g * zcrit_lim25(st));
+      si = opt_.zeta * sigma * g.omega_k *
+           physics::log_step(z_ratio, 1.0, opt_.width_dex) *
+           physics::log_step(st, opt_.st_si_min, opt_.width_dex);
+    } else if (opt_.si == StreamingInstability::kD16)  // Drazkowska et al. 2016
       si = opt_.zeta * sigma * g.omega_k * trigger *
            physics::log_step(st, opt_.st_si_min, opt_.width_dex);
     else  // Schoonenberg, Ormel & Krijt 2018

@@ -232,13 +232,17 @@ std::vector<KeySpec> make_keys() {
       positive("planetesimals.tau_pl_omega", "10.0", "",
                "conversion time of direct coagulation in units of 1/Omega_K"),
       choice(
-          "planetesimals.si", "none", {"none", "d16", "s18"},
+          "planetesimals.si", "none", {"none", "d16", "s18", "zcrit"},
           "streaming instability: d16 = Drazkowska et al. 2016 (zeta Sigma_d Omega for "
           "St >= 0.01), s18 = Schoonenberg et al. 2018 (zeta Sigma_d St Omega), both "
-          "when the midplane rho_d/rho_g >= eps_crit (spec §7.2)"),
+          "when the midplane rho_d/rho_g >= eps_crit; zcrit = zeta Sigma_d Omega for "
+          "St >= 0.01 when Sigma_d/Sigma_g >= Z_crit(St) of Lim et al. 2025 (revised "
+          "Li & Youdin 2021 fit, Pi = 0.05) (spec §7.2)"),
       positive("planetesimals.zeta_d16", "0.01", "", "d16 efficiency"),
       positive("planetesimals.zeta_s18", "0.1", "", "s18 efficiency"),
-      positive("planetesimals.St_si_min", "0.01", "", "d16: smallest St that takes part"),
+      positive("planetesimals.zeta_zcrit", "0.01", "", "zcrit efficiency"),
+      positive("planetesimals.St_si_min", "0.01", "",
+               "d16 and zcrit: smallest St that takes part"),
       positive("planetesimals.eps_crit", "1.0", "",
                "midplane rho_d/rho_g that triggers SI"),
 

@@ -257,11 +257,13 @@ Simulation::Simulation(const Config& cfg)
     po.st_pl = cfg.real("planetesimals.St_pl");
     po.tau_pl_omega = cfg.real("planetesimals.tau_pl_omega");
     const auto& si = cfg.str("planetesimals.si");
-    po.si = si == "d16"   ? StreamingInstability::kD16
-            : si == "s18" ? StreamingInstability::kS18
-                          : StreamingInstability::kNone;
-    po.zeta = si == "s18" ? cfg.real("planetesimals.zeta_s18")
-                          : cfg.real("planetesimals.zeta_d16");
+    po.si = si == "d16"     ? StreamingInstability::kD16
+            : si == "s18"   ? StreamingInstability::kS18
+            : si == "zcrit" ? StreamingInstability::kZcrit
+                            : StreamingInstability::kNone;
+    po.zeta = si == "s18"     ? cfg.real("planetesimals.zeta_s18")
+              : si == "zcrit" ? cfg.real("planetesimals.zeta_zcrit")
+                              : cfg.real("planetesimals.zeta_d16");
     po.st_si_min = cfg.real("planetesimals.St_si_min");
     po.eps_crit = cfg.real("planetesimals.eps_crit");
     auto pl =

@@ -5,7 +5,10 @@
 2. it does not trigger below rho_d/rho_g = 1, nor for St < 0.01;
 3. direct coagulation: once St >> St_pl = 10 the dust turns into planetesimals on
    tau_pl = 10/Omega_K;
-4. /summary agrees with integrals of the snapshot fields (fiducial scene).
+4. the critical-metallicity option (zcrit) triggers where Z = Sigma_d/Sigma_g exceeds
+   Z_crit(St) = 10^(0.10 x^2 + 0.07 x - 2.36), x = log10 St (0.52% at St = 0.05), converts
+   at zeta Sigma_d Omega_K and stops near Z_crit; it stays off below Z_crit (outside the smooth step, Z = Z_crit/5);
+5. /summary agrees with integrals of the snapshot fields (fiducial scene).
 """
 import h5py
 import numpy as np
@@ -65,7 +68,28 @@ def main():
     budget = (s["m_dust"] + s["m_pl_coag"] + s["m_pl_si"] + s["m_out_inner"]) / s["m_dust"][0] - 1
     c.check(np.max(np.abs(budget)) < 1e-10, f"budget closes ({np.max(np.abs(budget)):.1e})")
 
-    # 4. the summary against the snapshot fields (fiducial, shortened)
+    # 4. zcrit at St = 0.05: Z_crit = 10^(0.10 * 1.30103^2 - 0.07 * 1.30103 - 2.36)
+    x = np.log10(0.05)
+    z_crit = 10 ** (0.10 * x * x + 0.07 * x - 2.36)
+    out = f"{args.workdir}/zcrit_on.h5"
+    # Z = 0.02: rho_d/rho_g = 0.15, so d16 would not trigger; zcrit does
+    run(args.exe, SCENE, out, ['planetesimals.si="zcrit"', "dust.dust_to_gas=0.02"])
+    r = load_run(out)
+    s = r.snapshots
+    rate = s["sigma_pl_si"][1][1] / (r.time[1] * YR)
+    expect = 0.01 * s["sigma_d"][0][1] * omega(r)
+    print(f"SI zcrit: conversion rate {rate:.4e} g cm^-2 s^-1, zeta Sigma_d Omega = {expect:.4e}")
+    c.check(abs(rate / expect - 1) < 0.01, "zcrit rate = zeta Sigma_d Omega_K to 1%")
+    z_end = s["sigma_d"][-1][1] / s["sigma_g"][-1][1]
+    print(f"  after {r.time[-1]:.0f} yr: Z = {z_end:.4g}, Z_crit(0.05) = {z_crit:.4g}")
+    c.check(0.8 < z_end / z_crit < 1.3, "conversion stops near Z = Z_crit")
+    out = f"{args.workdir}/zcrit_off.h5"
+    run(args.exe, SCENE, out, ['planetesimals.si="zcrit"', "dust.dust_to_gas=0.001"])
+    s = load_run(out).snapshots
+    frac = s["sigma_pl_si"][-1][1] / s["sigma_d"][0][1]
+    c.check(frac < 1e-6, f"zcrit off at Z = 0.001 = Z_crit / 5 (outside the 0.1 dex smooth step): converted fraction {frac:.1e} < 1e-6")
+
+    # 5. the summary against the snapshot fields (fiducial, shortened)
     out = f"{args.workdir}/summary.h5"
     run(args.exe, "params/fiducial.toml", out, ["output.t_end_yr=3e4", "grid.n_cells=120"])
     r = load_run(out)

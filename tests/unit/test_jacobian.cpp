@@ -208,3 +208,10 @@ TEST(Jacobian, PlanetesimalsStreamingInstabilityS18) {
                        "dust.dust_to_gas=0.5"},
                       "planetesimals, SI s18 + coagulation");
 }
+
+TEST(Jacobian, PlanetesimalsStreamingInstabilityZcrit) {
+  // Z = 0.006 sits inside the smooth threshold Z_crit(St) = 0.4-0.8% over the St range
+  expect_exact_growth(
+      {"porosity.enabled=true", "planetesimals.si=\"zcrit\"", "dust.dust_to_gas=0.006"},
+      "planetesimals, SI zcrit");
+}
