@@ -323,7 +323,9 @@ bool may_change_on_restart(std::string_view key) {
       "output.times_yr",           "output.file",       "solver.rtol",
       "solver.atol_sigma",         "solver.max_steps",  "solver.max_dt_yr",
       "solver.reinit_at_snapshots"};
-  if (key.starts_with("checkpoint.") || key.starts_with("meta.")) return true;
+  if (key.starts_with("checkpoint.") || key.starts_with("meta.") ||
+      key.starts_with("observe."))  // read by `panoptic observe` only
+    return true;
   return std::find(kKeys.begin(), kKeys.end(), key) != kKeys.end();
 }
 
