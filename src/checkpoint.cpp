@@ -323,7 +323,9 @@ bool may_change_on_restart(std::string_view key) {
       "output.times_yr",           "output.file",       "solver.rtol",
       "solver.atol_sigma",         "solver.max_steps",  "solver.max_dt_yr",
       "solver.reinit_at_snapshots"};
-  if (key.starts_with("checkpoint.") || key.starts_with("meta.")) return true;
+  if (key.starts_with("checkpoint.") || key.starts_with("meta.") ||
+      key.starts_with("observe."))  // read by `panoptic observe` only
+    return true;
   return std::find(kKeys.begin(), kKeys.end(), key) != kKeys.end();
 }
 
@@ -373,7 +375,8 @@ std::vector<std::string> check_compatible(const Checkpoint& chk, const fs::path&
         "continued:" +
         differing +
         "\nA restart may change only the output times (output.t_end_yr, t_first_yr, "
-        "n_snapshots, times_yr), output.file, the solver.* settings and checkpoint.*. "
+        "n_snapshots, times_yr), output.file, the solver.* settings, checkpoint.* and "
+        "observe.*. "
         "Set these keys back to the checkpoint's values" +
         example + ", or start a new run without --restart.");
   if (chk.layout_signature != layout_signature)

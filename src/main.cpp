@@ -16,6 +16,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -27,6 +28,7 @@
 #include "src/cvode_integrator.hpp"
 #include "src/diagnostics.hpp"
 #include "src/error.hpp"
+#include "src/observe.hpp"
 #include "src/run_output.hpp"
 #include "src/simulation.hpp"
 #include "src/track.hpp"
@@ -358,6 +360,27 @@ int track(const std::string& scene, const std::vector<std::string>& overrides,
   return 0;
 }
 
+//! "0.87,1.3,3.0" -> numbers; a clear error naming the option otherwise.
+std::vector<double> parse_list(const std::string& option, const std::string& text) {
+  std::vector<double> out;
+  std::size_t a = 0;
+  while (a <= text.size()) {
+    std::size_t b = text.find(',', a);
+    if (b == std::string::npos) b = text.size();
+    const std::string item = text.substr(a, b - a);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0')
+      throw ConfigError(option + " " + text + ": '" + item +
+                        "' is not a number; give comma-separated numbers, e.g. " +
+                        option +
+                        (option == "--lambda-mm" ? " 0.87,1.3,3.0" : " 0.05,0.04,30"));
+    out.push_back(v);
+    a = b + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -410,6 +433,38 @@ int main(int argc, char** argv) {
   track_cmd->add_option("--t-max-yr", t_max_yr, "stop at this time [yr]")
       ->capture_default_str();
 
+  ObserveArgs obs;
+  std::string lambda_text, beam_text;
+  auto* obs_cmd = app.add_subcommand(
+      "observe",
+      "synthetic continuum images of a run's snapshot: Mie opacities, beam-convolved "
+      "images, radial profiles, spectral index (absorption only)");
+  obs_cmd->add_option("run", obs.run_file, "output file of `panoptic run` (HDF5)")
+      ->required();
+  obs_cmd->add_option("--time-yr", obs.time_yr, "time [yr]: the nearest snapshot is used")
+      ->required();
+  obs_cmd->add_option("--lambda-mm", lambda_text, "wavelengths [mm], e.g. 0.87,1.3,3.0")
+      ->required();
+  obs_cmd->add_option("--distance-pc", obs.distance_pc, "distance [pc]")
+      ->capture_default_str();
+  obs_cmd->add_option("--incl-deg", obs.incl_deg, "inclination [deg], 0 = face-on")
+      ->capture_default_str();
+  obs_cmd
+      ->add_option("--pa-deg", obs.pa_deg,
+                   "position angle of the major axis, north through east [deg]")
+      ->capture_default_str();
+  obs_cmd->add_option(
+      "--beam-arcsec", beam_text,
+      "beam FWHM major,minor [arcsec] and PA [deg] (default 0.05,0.05,0)");
+  obs_cmd->add_option("--a-cm", obs.a_cm,
+                      "particle radius [cm] in every cell, phi = 1 (for runs without "
+                      "growth; replaces the run's sizes)");
+  obs_cmd
+      ->add_option("--set", obs.overrides, "override an observe.* key: observe.key=value")
+      ->take_all();
+  obs_cmd->add_option("-o,--output", obs.output, "output file (default <run>_obs.h5)");
+  obs_cmd->add_flag("--overwrite", obs.overwrite, "replace an existing output file");
+
   auto* ref_cmd = app.add_subcommand(
       "reference",
       "print every scene key with its default and unit (params/reference.toml)");
@@ -431,6 +486,20 @@ int main(int argc, char** argv) {
     if (*run_cmd) return run(args);
     if (*check_cmd) return check(scene, overrides);
     if (*track_cmd) return track(scene, overrides, r0_au, a_stop_cm, t_max_yr);
+    if (*obs_cmd) {
+      obs.lambda_mm = parse_list("--lambda-mm", lambda_text);
+      if (!beam_text.empty()) {
+        const std::vector<double> b = parse_list("--beam-arcsec", beam_text);
+        if (b.size() != 3)
+          throw ConfigError(
+              "--beam-arcsec " + beam_text +
+              ": give three numbers bmaj,bmin,bpa (FWHM [arcsec], PA [deg])");
+        obs.bmaj_arcsec = b[0];
+        obs.bmin_arcsec = b[1];
+        obs.bpa_deg = b[2];
+      }
+      return observe(obs);
+    }
     if (*ref_cmd) {
       std::fputs(reference_toml().c_str(), stdout);
       return 0;

@@ -81,6 +81,14 @@ KeySpec real_list(std::string key, std::string unit, std::string doc,
   return k;
 }
 
+KeySpec real_table(std::string key, std::string def, std::string unit, std::string doc,
+                   double min) {
+  KeySpec k = real_list(std::move(key), std::move(unit), std::move(doc), min);
+  k.default_toml = std::move(def);
+  k.min_exclusive = true;
+  return k;
+}
+
 std::vector<KeySpec> make_keys() {
   return {
       // [meta]: documentation only.
@@ -292,6 +300,42 @@ std::vector<KeySpec> make_keys() {
       real_list("output.times_yr", "yr",
                 "explicit snapshot times; replaces the log spacing when not empty", 0.0),
       text("output.file", "output file (default: out/<scene name>.h5; -o overrides)"),
+
+      // [observe] `panoptic observe` (README "Synthetic observations"): optical
+      // constants m = n + i k per species, tabulated against wavelength (n linear, k
+      // log-linear in ln lambda between the rows; no extrapolation).
+      choice("observe.outer_species", "mix", {"mix", "ice", "sil"},
+             "solids outside the snow line (inside: sil): mix = water ice + silicate "
+             "with the ice mass fraction snowline.f_ice, ice = pure water ice"),
+      choice("observe.mix_rule", "bruggeman", {"bruggeman", "maxwell_garnett"},
+             "effective-medium rule of the mix (maxwell_garnett: silicate inclusions "
+             "in an ice matrix)"),
+      positive("observe.water_ice_rho", "0.92", "g cm^-3",
+               "density of water ice, for the volume fractions of the mix (with "
+               "material.sil_rho0)"),
+      real_table("observe.ice_lambda_mm", "[0.3, 0.5, 1.3, 5.0, 19.0]", "mm",
+                 "water ice: wavelengths of the table (Warren & Brandt 2008, JGR 113, "
+                 "D14220)",
+                 0.0),
+      real_table("observe.ice_n", "[1.7989, 1.7908, 1.7868, 1.7861, 1.7861]", "",
+                 "water ice: real part n", 0.0),
+      real_table("observe.ice_k", "[2.549e-2, 1.405e-2, 5.173e-3, 1.337e-3, 3.574e-4]",
+                 "", "water ice: imaginary part k", 0.0),
+      real_table("observe.sil_lambda_mm",
+                 "[0.29999, 0.49994, 0.70008, 0.99987, 1.2398, 1.4999, 2.0001, 2.4797, "
+                 "2.9999, 3.9995, 4.9994, 9.9987]",
+                 "mm",
+                 "silicate: wavelengths of the table (Draine 2003, ApJ 598, 1026, "
+                 "astrosilicate)",
+                 0.0),
+      real_table("observe.sil_n",
+                 "[3.416, 3.405, 3.403, 3.406, 3.409, 3.412, 3.416, 3.418, 3.421, 3.424, "
+                 "3.426, 3.432]",
+                 "", "silicate: real part n", 0.0),
+      real_table("observe.sil_k",
+                 "[0.1551, 0.08922, 0.06918, 0.05573, 0.04893, 0.04361, 0.03665, "
+                 "0.03219, 0.02870, 0.02413, 0.02109, 0.01384]",
+                 "", "silicate: imaginary part k", 0.0),
   };
 }
 

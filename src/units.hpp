@@ -13,4 +13,10 @@ inline constexpr double kYr = 3.156e7;            //!< year [s]
 inline constexpr double kMyr = 1e6 * kYr;         //!< megayear [s]
 inline constexpr double kMearth = 5.972e27;       //!< Earth mass [g]
 
+// radiation and the sky (panoptic observe)
+inline constexpr double kPlanck = 6.62607015e-27;  //!< Planck constant [erg s] (SI 2019)
+inline constexpr double kLightSpeed = 2.99792458e10;         //!< speed of light [cm s^-1]
+inline constexpr double kJansky = 1e-23;                     //!< [erg s^-1 cm^-2 Hz^-1]
+inline constexpr double kArcsecPerRad = 206264.80624709636;  //!< 180 * 3600 / pi
+
 }  // namespace panoptic::units
