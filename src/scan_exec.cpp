@@ -77,6 +77,18 @@ std::string tail(const fs::path& file, int lines, std::size_t max_bytes) {
   return out;
 }
 
+// The last "panoptic: error: ..." line of a run's stderr.
+std::optional<std::string> error_line(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::optional<std::string> found;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("panoptic: error: ", 0) == 0) found = line.substr(17, 600);
+  if (found)
+    for (char& c : *found)
+      if (static_cast<unsigned char>(c) < 0x20) c = '?';
+  return found;
+}
+
 std::string hostname() {
   char buf[256] = {};
   if (gethostname(buf, sizeof buf - 1) != 0) return "";
@@ -162,7 +174,8 @@ RunRecord finish_task(const ScanTask& task, int wait_status, double wall_s,
   r.wall_s = wall_s;
   r.worker = worker;
   r.host = hostname();
-  const std::string err_tail = tail(task.err, 3, 600);
+  // panoptic's own error line says what went wrong; otherwise (a crash) the last lines
+  const std::string err_tail = error_line(task.err).value_or(tail(task.err, 3, 600));
   if (WIFEXITED(wait_status)) {
     r.exit_code = WEXITSTATUS(wait_status);
     r.outcome = r.exit_code == 0    ? "completed"
