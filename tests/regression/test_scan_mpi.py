@@ -48,6 +48,23 @@ def main():
         c.check(ok and len(own) >= 10, f"{name}: table = its file's /summary ({len(own)} values)")
     c.check(np.count_nonzero(b["outcome/m_pl_coag"] > 1e-3) >= 4,
             "planetesimals formed in at least half of the runs (the outcome is not trivial)")
+    # postprocess: a map for the two axes, lines for one
+    from postprocess import plot_scan
+    p = subprocess.run([sys.executable, "-m", "postprocess.plot_scan", par], capture_output=True,
+                       text=True)
+    maps = p.stdout.split()
+    c.check(p.returncode == 0 and len(maps) == 6 and all(os.path.getsize(m) > 10000 for m in maps),
+            f"plot_scan: {len(maps)} maps written")
+    p = subprocess.run([sys.executable, "-m", "postprocess.plot_scan", par, "--axes", "disk.alpha"],
+                       capture_output=True, text=True)
+    c.check(p.returncode == 0 and p.stdout.strip().endswith("lines_disk.alpha.png"),
+            "plot_scan --axes disk.alpha: line plot written")
+    s = plot_scan.load_summary(par)
+    x, y = s["axes"]["disk.alpha"][0], s["axes"]["star.mass_msun"][0]
+    xs, ys, Z = plot_scan.grid_map(x, y, s["outcome"]["m_pl_coag"])
+    ok = Z.shape == (2, 4) and all(Z[list(ys).index(y[i]), list(xs).index(x[i])] ==
+                                   b["outcome/m_pl_coag"][i] for i in range(8))
+    c.check(ok, "the map's cells hold each run's value at its (alpha, mass)")
     c.finish()
 
 
