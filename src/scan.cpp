@@ -27,6 +27,7 @@
 #include <sstream>
 #include <thread>
 
+#include "src/checkpoint.hpp"
 #include "src/error.hpp"
 #include "src/scan_exec.hpp"
 #include "src/scan_manifest.hpp"
@@ -174,13 +175,15 @@ class Pool {
   Pool(int slots, std::string label) : slots_(slots), label_(std::move(label)) {}
   bool has_free() const { return static_cast<int>(running_.size()) < slots_; }
   bool idle() const { return running_.empty(); }
+  //! Starts a run: continued from its checkpoint when an earlier attempt left its output
+  //! and a checkpoint (a run stopped by SIGTERM/SIGINT, or one killed after its last
+  //! periodic checkpoint), else from the start.
   void start(const ScanTask& t) {
     std::vector<bool> used(static_cast<std::size_t>(slots_), false);
     for (const auto& [pid, r] : running_) used[static_cast<std::size_t>(r.slot)] = true;
     int slot = 0;
     while (used[static_cast<std::size_t>(slot)]) ++slot;
-    const pid_t pid = start_task(t);
-    running_[pid] = Running{t, slot, Clock::now()};
+    launch(t, slot, restart_of(t));
   }
   //! A run that ended since the last call, with its record written.
   std::optional<RunRecord> poll() {
@@ -191,6 +194,17 @@ class Pool {
       if (r < 0) status = W_EXITCODE(127, 0);  // lost: count it as failed
       const Running run = it->second;
       running_.erase(it);
+      // A checkpoint that panoptic run refuses (bad input 2: incompatible scene; I/O 4:
+      // damaged checkpoint or output): run it from the start instead.
+      if (run.restart && WIFEXITED(status) &&
+          (WEXITSTATUS(status) == 2 || WEXITSTATUS(status) == 4)) {
+        std::printf(
+            "scan: %s: its checkpoint was refused (exit %d); running it from the "
+            "start\n",
+            run.task.name.c_str(), WEXITSTATUS(status));
+        launch(run.task, run.slot, false);
+        return poll();
+      }
       return finish_task(run.task, status, seconds_since(run.start),
                          label_ + "/" + std::to_string(run.slot));
     }
@@ -205,7 +219,21 @@ class Pool {
     ScanTask task;
     int slot = 0;
     Clock::time_point start;
+    bool restart = false;
   };
+  static bool restart_of(const ScanTask& t) {
+    std::error_code ec;
+    return fs::exists(t.h5, ec) && fs::exists(checkpoint_path(t.h5), ec);
+  }
+  void launch(const ScanTask& t, int slot, bool restart) {
+    ScanTask run = t;
+    if (restart) {  // "--overwrite" (last) becomes "--restart CHK"
+      run.argv.back() = "--restart";
+      run.argv.push_back(checkpoint_path(t.h5).string());
+    }
+    const pid_t pid = start_task(run);
+    running_[pid] = Running{t, slot, Clock::now(), restart};
+  }
   int slots_;
   std::string label_;
   std::map<pid_t, Running> running_;

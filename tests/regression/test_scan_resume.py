@@ -80,6 +80,7 @@ def main():
     names = list(s["runs/name"])
     trunc, unmarked, kept = names[1], names[2], names[3]
     ids = {n: run_id(f"{out}/runs/{n}.h5") for n in names}
+    before = {k: v[2] for k, v in s.items() if k.startswith("outcome/")}
     with open(f"{out}/runs/{trunc}.h5", "r+b") as f:
         f.truncate(os.path.getsize(f"{out}/runs/{trunc}.h5") // 2)
     with h5py.File(f"{out}/runs/{unmarked}.h5", "r+") as f:
@@ -88,9 +89,44 @@ def main():
     c.check("6 complete (checked), 2 to run" in p.stdout, "a truncated and an unmarked file: 2 to run")
     s = summary(out)
     c.check((s["runs/status"] == "completed").all(), "complete again")
+    # (the unmarked file's checkpoint is the final one, at t_end: panoptic run refuses to
+    # continue from it (exit 2), so the scan runs it from the start)
     c.check(run_id(f"{out}/runs/{trunc}.h5") != ids[trunc]
             and run_id(f"{out}/runs/{unmarked}.h5") != ids[unmarked]
             and run_id(f"{out}/runs/{kept}.h5") == ids[kept], "exactly those two were rerun")
+    c.check(all(np.array_equal(before[k], s[k][2], equal_nan=True) for k in before),
+            "the rerun's outcome is the same bit for bit")
+    # 3b SIGTERM stops the scan: the runs under way checkpoint, the summary says
+    # interrupted, exit 75; the rerun continues them from their checkpoints
+    out2 = f"{args.workdir}/scan_term"
+    shutil.rmtree(out2, ignore_errors=True)
+    sf2 = write_scan(f"{args.workdir}/term.toml", [ALPHA], sets=[
+        "grid.n_cells=32", "output.t_end_yr=2e3", "output.t_first_yr=10.0",
+        "output.n_snapshots=12"])
+    proc = subprocess.Popen([args.exe, "scan", sf2, "-o", out2, "-j", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    deadline = time.time() + 60
+    while time.time() < deadline and proc.poll() is None and len(
+            glob.glob(f"{out2}/runs/*.h5")) < 2:
+        time.sleep(0.01)
+    time.sleep(0.3)
+    proc.send_signal(signal.SIGTERM)
+    text = proc.communicate(timeout=60)[0]
+    s2 = summary(out2)
+    stopped = [n for n, st in zip(s2["runs/name"], s2["runs/status"]) if st == "interrupted"]
+    c.check(proc.returncode == 75 and len(stopped) >= 1,
+            f"SIGTERM: exit {proc.returncode}, interrupted: {stopped}")
+    c.check(all(os.path.exists(f"{out2}/runs/{n}.chk.h5") for n in stopped),
+            "the interrupted runs are checkpointed")
+    p = scan(args.exe, sf2, out2, "-j", "2")
+    s2 = summary(out2)
+    ok = (s2["runs/status"] == "completed").all()
+    for n in stopped:
+        with h5py.File(f"{out2}/runs/{n}.h5", "r") as f:
+            ok &= "restarts" in f.attrs
+    c.check(ok, "rerun: complete, the interrupted runs continued from their checkpoints")
+    if not ok:
+        print(text, p.stdout)
     # 4 a changed scan file is refused; --force keeps the runs that still match
     write_scan(sf, [ALPHA, 'key = "star.mass_msun"\nvalues = [0.8, 1.3]'])
     p = scan(args.exe, sf, out, expect=2)
