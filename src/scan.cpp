@@ -300,9 +300,13 @@ int mpi_worker(const MpiSession& mpi, int jobs) {
   const auto [tag, go] = receive_from_master();
   if (tag != kGo || go != "0") return std::atoi(go.c_str());
   Pool pool(jobs, "rank" + std::to_string(mpi.rank));
-  bool asked = false, stopped = false;
+  bool asked = false, stopped = false, stopping = false;
   for (;;) {
     bool busy = false;
+    if (g_stop != 0 && !stopping) {  // mpirun forwards SIGTERM: let the runs checkpoint
+      stopping = true;
+      pool.signal_all(SIGTERM);
+    }
     if (!stopped && !asked && pool.has_free()) {
       MPI_Send(nullptr, 0, MPI_CHAR, 0, kRequest, MPI_COMM_WORLD);
       asked = true;
@@ -319,10 +323,17 @@ int mpi_worker(const MpiSession& mpi, int jobs) {
                  MPI_STATUS_IGNORE);
         asked = false;
         busy = true;
-        if (st.MPI_TAG == kTask)
+        if (st.MPI_TAG == kTask && !stopping) {
           pool.start(ScanTask::deserialize(bytes));
-        else
+        } else if (st.MPI_TAG == kTask) {  // stopping: record it as interrupted, unrun
+          const ScanTask t = ScanTask::deserialize(bytes);
+          const RunRecord r = finish_task(t, W_EXITCODE(kExitStopped, 0), 0.0,
+                                          "rank" + std::to_string(mpi.rank));
+          const double msg[3] = {static_cast<double>(r.id), 75.0, 0.0};
+          MPI_Send(msg, 3, MPI_DOUBLE, 0, kResult, MPI_COMM_WORLD);
+        } else {
           stopped = true;
+        }
       }
     }
     while (const auto r = pool.poll()) {

@@ -185,7 +185,9 @@ RunRecord finish_task(const ScanTask& task, int wait_status, double wall_s,
   } else if (WIFSIGNALED(wait_status)) {
     const int sig = WTERMSIG(wait_status);
     r.exit_code = -sig;
-    r.outcome = "failed";
+    // SIGTERM/SIGINT come from outside (the scan or the batch system stopping it, before
+    // the run installed its handler): the run was interrupted, it did not fail
+    r.outcome = sig == SIGTERM || sig == SIGINT ? "interrupted" : "failed";
     r.error = "killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
   } else {
     r.exit_code = -1;
