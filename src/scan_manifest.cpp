@@ -532,9 +532,11 @@ std::vector<ResolvedRun> validate_manifest(const Manifest& m) {
       validate_scene(cfg);
       out.push_back({cfg.resolved_toml(), cfg.real("output.t_end_yr")});
     } catch (const ConfigError& ex) {
+      std::string what = ex.what();
+      if (what.rfind("--set: ", 0) == 0) what = what.substr(7);  // not a --set here
       std::string vals;
       for (const std::string& s : ov) vals += (vals.empty() ? "" : ", ") + s;
-      throw ConfigError(e.name + " (" + vals + "): " + ex.what() +
+      throw ConfigError(e.name + " (" + vals + "): " + what +
                         "\n(the scan refuses to start: fix this scan axis)");
     }
   }

@@ -2,8 +2,9 @@
 step budget solver.max_steps is tiny), one crashes by SIGSEGV and one by SIGABRT (a
 wrapper script stands in for panoptic with --run-exe and kills itself); the scan goes on,
 the fourth run completes, and the summary records each failure with its error. A rerun
-runs the failed ones again and skips the complete one. A bad axis key or value is refused
-before anything is written (exit 2, naming the key)."""
+runs the failed ones again and skips the complete one. --task I runs one entry (job
+arrays) and the command without --task then runs what is missing. A bad axis key or
+value is refused before anything is written (exit 2, naming the key)."""
 import os
 import shutil
 import stat
@@ -57,6 +58,19 @@ def main():
     p = scan(args.exe, sf, out, "--run-exe", wrapper, expect=3)
     c.check("1 complete (checked), 3 to run" in p.stdout and
             run_id(f"{out}/runs/run_00000.h5") == rid, "rerun: the failed runs run again")
+    # job arrays: --task I runs entry I alone; the command without --task collects
+    arr = f"{args.workdir}/array"
+    shutil.rmtree(arr, ignore_errors=True)
+    p0 = scan(args.exe, sf, arr, "--task", "0", expect=0)
+    p1 = scan(args.exe, sf, arr, "--task", "1", expect=3)
+    p9 = scan(args.exe, sf, arr, "--task", "9", expect=2)
+    ran = sorted(f for f in os.listdir(f"{arr}/runs") if f.endswith(".status"))
+    c.check(ran == ["run_00000.status", "run_00001.status"] and "runs 0 to 3" in p9.stderr,
+            f"--task 0 completed, --task 1 failed (exit 3), --task 9 refused; records: {ran}")
+    p = scan(args.exe, sf, arr, expect=3)
+    c.check("1 complete (checked), 3 to run" in p.stdout and
+            list(summary(arr)["runs/status"]) == ["completed", "failed", "completed", "completed"],
+            "collecting: the missing runs ran, the summary holds all four")
     # bad input: refused before anything is written
     for axis, what in [('key = "star.mass_msun"\nvalues = [1.0, -1.0]', "star.mass_msun = -1.0"),
                        ('key = "disk.alpah"\nvalues = [1e-3]', "did you mean disk.alpha")]:

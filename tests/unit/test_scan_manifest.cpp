@@ -190,6 +190,24 @@ TEST(ScanManifest, BadValuesAreRefusedBeforeAnyRunNamingRunAndKey) {
   EXPECT_EQ(r[1].t_end_yr, 1e6);  // params/fiducial.toml
 }
 
+TEST(ScanManifest, ResolvedSceneIsWhatTheRunRecords) {
+  // The scan validates runs with apply_trusted_overrides on the base scene; a run loads
+  // the scene with every --set (load_scene). Both must resolve to the same text: the scan
+  // recognises a complete run by its config_toml.
+  const Manifest m = expand(
+      "set = [\"grid.n_cells=40\", \"output.t_end_yr=2e3\"]\n"
+      "[[axis]]\nkey = \"disk.alpha\"\nlog = [1e-4, 1e-2]\nnum = 3\n"
+      "[[axis]]\nkey = \"disk.model\"\nvalues = [\"powerlaw\", \"lbp\"]\n");
+  const std::vector<ResolvedRun> r = validate_manifest(m);
+  ASSERT_EQ(r.size(), 6u);
+  for (std::size_t i = 0; i < m.entries.size(); ++i) {
+    const std::vector<std::string> all = m.overrides(i);
+    EXPECT_EQ(r[i].config_toml, load_scene(m.scene, all).resolved_toml()) << i;
+  }
+  EXPECT_NE(r[0].config_toml, r[1].config_toml);
+  EXPECT_EQ(r[5].t_end_yr, 2e3);
+}
+
 TEST(ScanManifest, ManifestBodyIgnoresComments) {
   const Manifest m = expand("[[axis]]\nkey = \"star.mass_msun\"\nvalues = [1.0]\n");
   EXPECT_EQ(manifest_body(m.to_toml("# a header\n# more\n")), manifest_body(m.to_toml()));
