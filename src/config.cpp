@@ -576,7 +576,7 @@ class Loader {
     }
     std::string problem;
     std::optional<ConfigValue> value;
-    if (const auto literal = parse_literal(*spec, raw)) {
+    if (const auto literal = parse_literal(*spec, raw, trusted_)) {
       value = convert(*spec, literal->node(), problem);
     } else {
       value = convert(*spec, toml::value<std::string>(raw), problem);
@@ -610,6 +610,8 @@ class Loader {
 
   std::map<std::string, ConfigValue, std::less<>> values_;
   std::map<std::string, ValueOrigin, std::less<>> origins_;
+  //! Parse --set literals in this process (text the program wrote itself).
+  bool trusted_ = false;
 
  private:
   // A one-line TOML document holding the --set value, so that 2, 1e-3, true, "x" and
@@ -620,16 +622,22 @@ class Loader {
     std::string table, leaf;
     const toml::node& node() const { return *doc[table][leaf].node(); }
   };
-  static std::optional<Literal> parse_literal(const KeySpec& spec,
-                                              const std::string& raw) {
+  static std::optional<Literal> parse_literal(const KeySpec& spec, const std::string& raw,
+                                              bool trusted) {
     if (raw.empty() || raw.find_first_of("\r\n") != std::string::npos)
       return std::nullopt;
     Literal lit;
     lit.table = table_of(spec.key);
     lit.leaf = leaf_of(spec.key);
+    const std::string doc = "[" + lit.table + "]\n" + lit.leaf + " = " + raw + "\n";
     try {
-      lit.doc = parse_toml_guarded(
-          "[" + lit.table + "]\n" + lit.leaf + " = " + raw + "\n", "--set");
+      if (trusted) {
+        lit.doc = toml::parse(doc, std::string_view("--set"));
+      } else {
+        lit.doc = parse_toml_guarded(doc, "--set");
+      }
+    } catch (const toml::parse_error&) {
+      return std::nullopt;
     } catch (const ConfigError&) {
       return std::nullopt;
     }
@@ -869,6 +877,20 @@ Config load_scene_text(std::string_view text, const std::string& name,
     if (config.values_.emplace(key, value).second) {
       config.origins_[key] = ValueOrigin{"default", false};
     }
+  }
+  return config;
+}
+
+Config apply_trusted_overrides(const Config& base,
+                               std::span<const std::string> overrides) {
+  Loader loader("", base.file().string());
+  loader.trusted_ = true;
+  for (const std::string& item : overrides) loader.apply_override(item);
+  loader.throw_if_failed();
+  Config config = base;
+  for (auto& [key, value] : loader.values_) {
+    config.values_[key] = std::move(value);
+    config.origins_[key] = loader.origins_[key];
   }
   return config;
 }

@@ -87,6 +87,13 @@ Config load_scene(const std::filesystem::path& file,
 Config load_scene_text(std::string_view text, const std::string& name,
                        std::span<const std::string> overrides = {});
 
+//! `base` with further "table.key=value" overrides applied after its own, exactly as
+//! load_scene() would apply them. Only for text the program wrote itself (the axis values
+//! of panoptic scan, canonical TOML literals): the literals are parsed in this process,
+//! without the crash guard of src/toml_guard.hpp, which costs a fork() per value.
+Config apply_trusted_overrides(const Config& base,
+                               std::span<const std::string> overrides);
+
 //! params/reference.toml as generated from the schema: every key, commented, with units
 //! and defaults. A unit test checks that the file in the repository equals this text.
 std::string reference_toml();

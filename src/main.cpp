@@ -30,6 +30,7 @@
 #include "src/error.hpp"
 #include "src/observe.hpp"
 #include "src/run_output.hpp"
+#include "src/scan.hpp"
 #include "src/simulation.hpp"
 #include "src/track.hpp"
 #include "src/units.hpp"
@@ -389,7 +390,8 @@ int main(int argc, char** argv) {
       "panoptic: dust evolution of a whole protoplanetary disk, from monomers to "
       "planetesimals"};
   app.set_version_flag("--version", std::string("panoptic ") + PANOPTIC_VERSION + " (" +
-                                        PANOPTIC_GIT_SHA + ")");
+                                        PANOPTIC_GIT_SHA + ")" +
+                                        (scan_has_mpi() ? " with MPI" : ""));
   app.require_subcommand(1);
   RunArgs args;
   args.program = argc > 0 ? argv[0] : "panoptic";
@@ -469,8 +471,30 @@ int main(int argc, char** argv) {
       "reference",
       "print every scene key with its default and unit (params/reference.toml)");
 
+  ScanOptions scan_opts;
+  auto* scan_cmd = app.add_subcommand(
+      "scan",
+      "run a parameter scan: serially, with -j N workers, under mpirun, or one entry "
+      "(--task I); rerun to resume");
+  scan_cmd->add_option("scan_file", scan_opts.scan_file, "scan file (TOML)")->required();
+  scan_cmd->add_option("-o,--output", scan_opts.dir,
+                       "scan directory (manifest, runs/, summary)");
+  scan_cmd->add_option("-j,--jobs", scan_opts.jobs, "runs at once (per MPI rank)")
+      ->capture_default_str();
+  scan_cmd->add_option("--task", scan_opts.task,
+                       "run only manifest entry I (job arrays)");
+  scan_cmd->add_flag("--dry-run", scan_opts.dry_run,
+                     "validate and print the manifest; write nothing");
+  scan_cmd->add_flag("--force", scan_opts.force,
+                     "replace a manifest in DIR that differs from the scan's");
+  scan_cmd->add_option(
+      "--run-exe", scan_opts.run_exe,
+      "the panoptic executable that runs the scenes (default: this one)");
+
   try {
     app.parse(argc, argv);
+    if (*scan_cmd && !scan_opts.dry_run && scan_opts.dir.empty())
+      throw CLI::RequiredError("-o DIR (the scan directory)");
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -485,6 +509,7 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return run(args);
     if (*check_cmd) return check(scene, overrides);
+    if (*scan_cmd) return run_scan(scan_opts);
     if (*track_cmd) return track(scene, overrides, r0_au, a_stop_cm, t_max_yr);
     if (*obs_cmd) {
       obs.lambda_mm = parse_list("--lambda-mm", lambda_text);

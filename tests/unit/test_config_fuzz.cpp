@@ -286,6 +286,8 @@ std::vector<std::string> seed_corpus() {
   std::error_code ec;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(params, ec)) {
     if (entry.path().extension() != ".toml") continue;
+    // params/scans/ holds scan files (panoptic scan), not scenes
+    if (entry.path().parent_path().filename() == "scans") continue;
     std::ifstream in(entry.path(), std::ios::binary);
     std::stringstream text;
     text << in.rdbuf();

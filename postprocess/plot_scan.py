@@ -1,0 +1,210 @@
+"""Outcomes of a parameter scan against its axes, from the scan's summary table.
+
+    python3 -m postprocess.plot_scan DIR [-o OUTDIR] [--axes KEY[,KEY]] [--outcomes A,B,...]
+
+reads DIR/summary.h5 (written by `panoptic scan ... -o DIR`) and writes into OUTDIR
+(default DIR/plots/), printing the path of each figure:
+  - one axis (or --axes KEY): lines_<KEY>.png, one panel per outcome against the axis;
+    with a second axis of at most 8 values, one line per value of it;
+  - two axes: map_<outcome>.png per outcome: a colour map over the two axes when the runs
+    form a full grid (sampling = "grid"), else a scatter coloured by the outcome
+    (Latin-hypercube scans).
+Axes of log spacing get log scales; positive outcomes that span more than two decades get
+a logarithmic colour scale (values more than 1e6 below the largest get its lowest colour).
+Runs that did not complete are drawn as black crosses. Outcomes (default: those present
+of m_pl_coag, m_pl_si, m_peb_snowline, m_peb_r_in, m_dust_final, t_first_pl_min) are the
+/summary scalars of the runs (README, Output; units M_earth, au, yr).
+"""
+import argparse
+import os
+import sys
+
+import h5py
+import numpy as np
+from matplotlib import colors
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+DEFAULT_OUTCOMES = ("m_pl_coag", "m_pl_si", "m_peb_snowline", "m_peb_r_in", "m_dust_final",
+                    "t_first_pl_min")
+UNITS = {"m_pl_coag": "M_earth", "m_pl_si": "M_earth", "m_peb_snowline": "M_earth",
+         "m_peb_r_in": "M_earth", "m_dust_final": "M_earth", "t_first_pl_min": "yr",
+         "r_min_pl_coag": "au", "r_max_pl_coag": "au", "r_min_pl_si": "au",
+         "r_max_pl_si": "au"}
+
+
+def _str(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def load_summary(scan_dir):
+    """The summary table: dict with 'status', 'name', 'axes' {key: (values, spacing)},
+    'outcome' {name: values}, 'sampling'."""
+    with h5py.File(os.path.join(scan_dir, "summary.h5"), "r") as f:
+        dec = lambda a: np.array([x.decode() for x in a])  # noqa: E731
+        axes = {}
+        for k in _str(f.attrs["axes"]).split(","):
+            ds = f["axes"][k]
+            sp = ds.attrs.get("spacing", "list")
+            axes[k] = (ds[()] if ds.dtype.kind == "f" else dec(ds[()]), _str(sp))
+        return {"status": dec(f["runs/status"][()]), "name": dec(f["runs/name"][()]),
+                "axes": axes, "sampling": _str(f.attrs["sampling"]),
+                "outcome": {k: ds[()] for k, ds in f["outcome"].items()}}
+
+
+def grid_map(x, y, z):
+    """The runs as a full grid: (xs, ys, Z) with Z[j, i] the value at (xs[i], ys[j]), or
+    None when the points do not form a full grid (each pair exactly once)."""
+    xs, ys = np.unique(x), np.unique(y)
+    if len(xs) * len(ys) != len(x):
+        return None
+    Z = np.full((len(ys), len(xs)), np.nan)
+    seen = np.zeros(Z.shape, bool)
+    for xv, yv, zv in zip(x, y, z):
+        i, j = np.searchsorted(xs, xv), np.searchsorted(ys, yv)
+        if seen[j, i]:
+            return None
+        seen[j, i] = True
+        Z[j, i] = zv
+    return xs, ys, Z
+
+
+def edges(v, log):
+    """Cell edges around sorted centres v (midpoints; in log10 for a log axis)."""
+    t = np.log10(v) if log else np.asarray(v, float)
+    if len(t) == 1:
+        e = np.array([t[0] - 0.5, t[0] + 0.5])
+    else:
+        mid = 0.5 * (t[1:] + t[:-1])
+        e = np.concatenate([[2 * t[0] - mid[0]], mid, [2 * t[-1] - mid[-1]]])
+    return 10 ** e if log else e
+
+
+def norm_for(z):
+    good = z[np.isfinite(z)]
+    pos = good[good > 0]
+    if len(pos) and good.min() >= 0:
+        hi = pos.max()
+        lo = max(pos.min(), hi * 1e-6)
+        if hi / lo > 100:
+            return colors.LogNorm(vmin=lo, vmax=hi, clip=True)
+    return None
+
+
+def label(name):
+    return f"{name} [{UNITS[name]}]" if name in UNITS else name
+
+
+def line_figure(s, key, outcomes, path):
+    x, spacing = s["axes"][key]
+    others = [k for k in s["axes"] if k != key and s["axes"][k][0].dtype.kind == "f"]
+    groups = [(None, np.ones(len(x), bool))]
+    if others:
+        vals = np.unique(s["axes"][others[0]][0])
+        if len(vals) <= 8:
+            groups = [(f"{others[0]} = {v:.4g}", s["axes"][others[0]][0] == v) for v in vals]
+    ok = s["status"] == "completed"
+    n = len(outcomes)
+    cols = min(n, 3)
+    rows = (n + cols - 1) // cols
+    fig = Figure(figsize=(4.2 * cols, 3.3 * rows), layout="constrained")
+    FigureCanvasAgg(fig)
+    for k, o in enumerate(outcomes):
+        ax = fig.add_subplot(rows, cols, k + 1)
+        z = s["outcome"][o]
+        for lab, sel in groups:
+            m = sel & ok & np.isfinite(z)
+            order = np.argsort(x[m])
+            ax.plot(x[m][order], z[m][order], "o-", ms=3, label=lab)
+        bad = ~ok
+        if bad.any():
+            floor = norm_for(z).vmin if norm_for(z) is not None else np.nanmin(z)
+            ax.plot(x[bad], np.full(bad.sum(), floor if np.isfinite(floor) else 0),
+                    "kx", label="not completed")
+        if spacing == "log":
+            ax.set_xscale("log")
+        norm = norm_for(z)
+        if norm is not None:
+            ax.set_yscale("log")
+            ax.set_ylim(norm.vmin / 2, norm.vmax * 2)
+        ax.set_xlabel(key)
+        ax.set_ylabel(label(o))
+        if k == 0 and (groups[0][0] is not None or bad.any()):
+            ax.legend(fontsize=7)
+    fig.savefig(path, dpi=110)
+
+
+def map_figure(s, kx, ky, o, path):
+    x, sx = s["axes"][kx]
+    y, sy = s["axes"][ky]
+    z = np.where(s["status"] == "completed", s["outcome"][o], np.nan)
+    fig = Figure(figsize=(5.6, 4.4), layout="constrained")
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot()
+    norm = norm_for(z)
+    g = grid_map(x, y, z) if s["sampling"] == "grid" else None
+    if g is not None:
+        xs, ys, Z = g
+        im = ax.pcolormesh(edges(xs, sx == "log"), edges(ys, sy == "log"),
+                           np.ma.masked_invalid(Z), norm=norm, shading="flat")
+    else:
+        m = np.isfinite(z)
+        im = ax.scatter(x[m], y[m], c=z[m], norm=norm, s=28, edgecolors="none")
+    bad = s["status"] != "completed"
+    if bad.any():
+        ax.plot(x[bad], y[bad], "kx", ms=7, label="not completed")
+        ax.legend(fontsize=7, loc="upper right")
+    if sx == "log":
+        ax.set_xscale("log")
+    if sy == "log":
+        ax.set_yscale("log")
+    ax.set_xlabel(kx)
+    ax.set_ylabel(ky)
+    ax.set_title(o, fontsize=10)
+    fig.colorbar(im, ax=ax, label=label(o))
+    fig.savefig(path, dpi=110)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("scan_dir")
+    ap.add_argument("-o", "--outdir")
+    ap.add_argument("--axes", help="one or two axis keys, comma-separated (default: the "
+                                   "first two numeric axes)")
+    ap.add_argument("--outcomes", help="comma-separated /summary names")
+    a = ap.parse_args(argv)
+    s = load_summary(a.scan_dir)
+    outdir = a.outdir or os.path.join(a.scan_dir, "plots")
+    os.makedirs(outdir, exist_ok=True)
+    numeric = [k for k, (v, _) in s["axes"].items() if v.dtype.kind == "f"]
+    keys = a.axes.split(",") if a.axes else numeric[:2]
+    for k in keys:
+        if k not in numeric:
+            sys.exit(f"plot_scan: {k}: not a numeric axis of this scan; axes: {', '.join(numeric)}")
+    if not keys or len(keys) > 2:
+        sys.exit("plot_scan: give one or two axes with --axes")
+    outcomes = (a.outcomes.split(",") if a.outcomes
+                else [o for o in DEFAULT_OUTCOMES if o in s["outcome"]])
+    for o in outcomes:
+        if o not in s["outcome"]:
+            sys.exit(f"plot_scan: {o}: not an outcome of this scan; outcomes: "
+                     f"{', '.join(sorted(s['outcome']))}")
+    if not outcomes:
+        sys.exit("plot_scan: no completed run has a /summary yet")
+    paths = []
+    if len(keys) == 1:
+        p = os.path.join(outdir, f"lines_{keys[0]}.png")
+        line_figure(s, keys[0], outcomes, p)
+        paths.append(p)
+    else:
+        for o in outcomes:
+            p = os.path.join(outdir, f"map_{o}.png")
+            map_figure(s, keys[0], keys[1], o, p)
+            paths.append(p)
+    for p in paths:
+        print(p)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

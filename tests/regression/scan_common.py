@@ -1,0 +1,74 @@
+"""Shared helpers of the scan tests (test_scan_*.py): write a scan file of a tiny
+reduced fiducial scene, run `panoptic scan`, read DIR/summary.h5."""
+import os
+import subprocess
+
+import h5py
+import numpy as np
+
+from common import REPO
+
+# The fiducial physics (growth, porosity, planetesimals, snow line) on 32 cells to 300 yr:
+# about 0.2-0.5 s a run, with planetesimals formed in most runs.
+FAST = ["grid.n_cells=32", "output.t_end_yr=300.0", "output.t_first_yr=10.0",
+        "output.n_snapshots=6"]
+
+
+def write_scan(path, axes, sets=FAST, extra=""):
+    """axes: list of TOML bodies of [[axis]] tables."""
+    text = "[scan]\n"
+    text += f'scene = "{os.path.join(REPO, "params/fiducial.toml")}"\n'
+    text += "set = [" + ", ".join(f'"{s}"' for s in sets) + "]\n" + extra
+    for a in axes:
+        text += "\n[[axis]]\n" + a + "\n"
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def scan(exe, scan_file, out, *opts, mpi=None, expect=0, env=None):
+    cmd = [exe, "scan", scan_file, "-o", out, *opts]
+    if mpi:
+        cmd = ["mpirun", "--oversubscribe", "-n", str(mpi)] + cmd
+    e = dict(os.environ)
+    e.update({"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"})
+    if env:
+        e.update(env)
+    p = subprocess.run(cmd, capture_output=True, text=True, env=e)
+    if expect is not None and p.returncode != expect:
+        print(" ".join(cmd))
+        print(p.stdout)
+        print(p.stderr)
+        raise SystemExit(f"panoptic scan exited with {p.returncode}, expected {expect}")
+    return p
+
+
+def summary(out):
+    """DIR/summary.h5 as a dict of numpy arrays: runs/*, axes/*, outcome/*."""
+    d = {}
+    with h5py.File(os.path.join(out, "summary.h5"), "r") as f:
+        for g in ("runs", "axes", "outcome"):
+            for k, ds in f[g].items():
+                v = ds[()]
+                if v.dtype.kind == "S":
+                    v = np.array([x.decode() for x in v])
+                d[f"{g}/{k}"] = v
+    return d
+
+
+def run_summary(h5):
+    """The /summary scalars of one run file, as the scan table should hold them."""
+    out = {}
+    with h5py.File(h5, "r") as f:
+        for k, ds in f["summary"].items():
+            v = ds[()]
+            if v.size == 1:
+                out[k] = float(v[0])
+            elif k == "t_first_pl":
+                out["t_first_pl_min"] = float(np.nanmin(v)) if np.isfinite(v).any() else np.nan
+    return out
+
+
+def run_id(h5):
+    with h5py.File(h5, "r") as f:
+        return f.attrs["run_id"]
