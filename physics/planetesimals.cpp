@@ -1,6 +1,7 @@
 #include "physics/planetesimals.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 namespace panoptic {
 
@@ -36,13 +37,24 @@ void Planetesimals::cell_rates(int cell, const T* yc, T& coag, T& si) const {
   si = T(0.0);
   if (opt_.coagulation) {
     // spec §7.1: St >= St_pl while the particle still grows
-    const auto r = physics::particle_rates(sigma, codec_.mass(cell, yc), codec_.phi(yc),
-                                           st, g, species_[cell], growth_);
+    T dlnm_dt;
+    if (growth_module_) {
+      if constexpr (std::is_same_v<T, double>) {
+        dlnm_dt = growth_module_->cell_rates(cell, yc).dlnm_dt;
+      } else {
+        T unused;
+        growth_module_->rates_ad(cell, yc, dlnm_dt, unused);
+      }
+    } else {
+      dlnm_dt = physics::particle_rates(sigma, codec_.mass(cell, yc), codec_.phi(yc), st,
+                                        g, species_[cell], growth_)
+                    .dlnm_dt;
+    }
     const double tau_pl = opt_.tau_pl_omega / g.omega_k;
     // dm/dt > 0, smoothly: on while the particle e-folds its mass within 1e9 / Omega (a
     // particle held by erosion or fragmentation grows far slower than that)
     using std::tanh;
-    const T growing = 0.5 * (1.0 + tanh(1e9 / g.omega_k * r.dlnm_dt));
+    const T growing = 0.5 * (1.0 + tanh(1e9 / g.omega_k * dlnm_dt));
     coag = sigma / tau_pl * physics::log_step(st, opt_.st_pl, opt_.width_dex) * growing;
   }
   if (opt_.si != StreamingInstability::kNone) {

@@ -116,6 +116,20 @@ TEST(Jacobian, DiffusionAlone) {
 
 TEST(Jacobian, DriftAlone) { expect_exact({"transport.diffusion=false"}, "drift alone"); }
 
+// The limited (van Leer) advection widens the stencil to the far upwind cell: its
+// entries come from the limiter's analytic derivative, checked here against FD on states
+// perturbed by +-30 % per cell, so both branches of the limiter (ab > 0 and ab <= 0)
+// occur.
+TEST(Jacobian, DriftVanLeer) {
+  expect_exact({"transport.diffusion=false", "transport.advection=\"van_leer\""},
+               "drift alone, van Leer");
+}
+
+TEST(Jacobian, DriftAndDiffusionVanLeerEvolvingGas) {
+  expect_exact({"transport.advection=\"van_leer\"", "gas.evolve=true"},
+               "drift + diffusion + viscous gas, van Leer");
+}
+
 TEST(Jacobian, ViscousGasAlone) {
   expect_exact({"gas.evolve=true", "transport.drift=false", "transport.diffusion=false"},
                "viscous gas alone");
@@ -207,4 +221,13 @@ TEST(Jacobian, PlanetesimalsStreamingInstabilityS18) {
   expect_exact_growth({"planetesimals.si=\"s18\"", "planetesimals.coagulation=true",
                        "dust.dust_to_gas=0.5"},
                       "planetesimals, SI s18 + coagulation");
+}
+
+// The limited advection with passengers (Q_m, Q_phi) through the snow line, where the
+// received flows of Q_m mix in the flow of Sigma_d: the far-cell entries of every row.
+TEST(Jacobian, GrowthSnowLineVanLeer) {
+  expect_exact_growth(
+      {"porosity.enabled=true", "snowline.enabled=true",
+       "transport.advection=\"van_leer\"", "pebbles.radii_au=[3.0, 10.0]"},
+      "growth + snow line + monitors, van Leer");
 }
