@@ -90,12 +90,12 @@ int DustTransport::add_monitor(StateLayout& layout, int face) {
 }
 
 template <class T>
-void DustTransport::received_flows(int f, const T* flows, T* received,
-                                   T& sublimated) const {
+void DustTransport::received_flows(int f, const T* flows, T* received, T& sublimated,
+                                   bool inward) const {
   const int nt = static_cast<int>(transported_.size());
   for (int k = 0; k < nt; ++k) received[k] = flows[k];
   sublimated = T(0.0);
-  if (f != snow_face_ || value_of(flows[0]) >= 0.0) return;
+  if (f != snow_face_ || !inward) return;
   // spec §6.3 and §11 #18: the ice sublimates, m -> (1 - f_ice) m, phi kept
   const double keep = 1.0 - f_ice_;
   for (int k = 0; k < nt; ++k) received[k] = keep * flows[k];
@@ -133,7 +133,8 @@ T DustTransport::velocity(int f, const T* ya, const T* yb, const T& st) const {
 }
 
 template <class T>
-void DustTransport::face_flows(int f, const T* ya, const T* yb, T* flows) const {
+int DustTransport::face_flows(int f, const T* ya, const T* yb, std::span<const double> y,
+                              T* flows, double* d_far) const {
   using std::sqrt;
   const int nt = static_cast<int>(transported_.size());
   // Stokes number on the face: geometric mean of the neighbours (exact for power laws on
@@ -145,7 +146,7 @@ void DustTransport::face_flows(int f, const T* ya, const T* yb, T* flows) const 
   if (f == 0) {  // open inner boundary: outflow with the upwind state, never inflow
     for (int k = 0; k < nt; ++k)
       flows[k] = value_of(v) < 0.0 ? T(two_pi_rc_[0] * v * ya[transported_[k]]) : T(0.0);
-    return;
+    return -1;
   }
   const bool from_left = value_of(v) > 0.0;
   T diff_coef(0.0), sg_a(0.0), sg_b(0.0);
@@ -159,12 +160,38 @@ void DustTransport::face_flows(int f, const T* ya, const T* yb, T* flows) const 
   // first order either way, but this keeps the steady drift profile Sigma ∝ 1/(r v)
   // exact on the grid, so the pebble flux through a face has no truncation error there.
   const double two_pi_r_up = 2.0 * units::kPi * grid_.r_c(from_left ? f - 1 : f);
+  // Limited scheme: the far upwind cell (behind the upwind one), if on the grid.
+  const int n = grid_.n_cells();
+  const int far = !opt_.limited || !opt_.drift ? -1
+                  : from_left                  ? (f >= 2 ? f - 2 : -1)
+                                               : (f + 1 < n ? f + 1 : -1);
   for (int k = 0; k < nt; ++k) {
     const int s = transported_[k];
     T flow = two_pi_r_up * v * (from_left ? ya[s] : yb[s]);
+    if (d_far) d_far[k] = 0.0;
+    if (far >= 0) {
+      // MUSCL with the van Leer limiter on q = 2 pi r_c y (the variable the first-order
+      // scheme upwinds): face value q_up + psi(a, b)/2, a = q_up - q_far, b = q_down -
+      // q_up, psi = 2ab/(a + b) for ab > 0, else 0 (van Leer 1977; LeVeque 2002 §6.9).
+      const T q_up = two_pi_r_up * (from_left ? ya[s] : yb[s]);
+      const T q_down = 2.0 * units::kPi * grid_.r_c(from_left ? f : f - 1) *
+                       (from_left ? yb[s] : ya[s]);
+      const double q_far = two_pi_rc_[far] * y[layout_.index(far, s)];
+      const T a = q_up - q_far, b = q_down - q_up;
+      if (value_of(a) * value_of(b) > 0.0) {
+        const T ab = a + b;
+        flow += v * (a * b / ab);
+        // d(face value)/d q_far = -(1/2) d psi/d a = -b^2/(a + b)^2
+        if (d_far) {
+          const double bv = value_of(b), abv = value_of(ab);
+          d_far[k] = -value_of(v) * bv * bv / (abv * abv) * two_pi_rc_[far];
+        }
+      }
+    }
     if (opt_.diffusion) flow += two_pi_r_[f] * diff_coef * (yb[s] / sg_b - ya[s] / sg_a);
     flows[k] = flow;
   }
+  return far;
 }
 
 void DustTransport::declare_pattern(PatternBuilder& p) const {
@@ -180,11 +207,17 @@ void DustTransport::declare_pattern(PatternBuilder& p) const {
     if (f == snow_face_) rows.push_back(layout_.global_index(g_sub_));
     if (!monitor_slot_.empty() && monitor_slot_[f] >= 0)
       rows.push_back(layout_.global_index(monitor_slot_[f]));
-    for (long row : rows)
+    for (long row : rows) {
       for (int j = 0; j < nv; ++j) {
         p.add(row, layout_.index(a, j));
         p.add(row, layout_.index(b, j));
       }
+      // limited scheme: the far upwind cell on either side (the drift may turn)
+      if (opt_.limited && opt_.drift && f > 0)
+        for (int far : {f - 2, f + 1})
+          if (far >= 0 && far < n)
+            for (int s : transported_) p.add(row, layout_.index(far, s));
+    }
   }
 }
 
@@ -195,8 +228,8 @@ void DustTransport::add_rhs(double, std::span<const double> y,
   double sublimated = 0.0;
   for (int f = 0; f < n; ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
-    face_flows(f, &y[layout_.index(a, 0)], &y[layout_.index(b, 0)], flows.data());
-    received_flows(f, flows.data(), received.data(), sublimated);
+    face_flows(f, &y[layout_.index(a, 0)], &y[layout_.index(b, 0)], y, flows.data());
+    received_flows(f, flows.data(), received.data(), sublimated, flows[0] < 0.0);
     for (int k = 0; k < nt; ++k) {
       const int s = transported_[k];
       ydot[layout_.index(f, s)] += flows[k] / grid_.area(f);
@@ -214,6 +247,7 @@ void DustTransport::add_jacobian(double, std::span<const double> y,
   const int n = grid_.n_cells(), nv = layout_.n_cell_vars();
   const int nt = static_cast<int>(transported_.size()), nloc = 2 * nv;
   std::array<AD, kMaxVars> ya, yb, flows, received;
+  std::array<double, kMaxVars> d_far{}, unit{}, rec_far{};
   AD sublimated;
   for (int f = 0; f < n; ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
@@ -221,8 +255,30 @@ void DustTransport::add_jacobian(double, std::span<const double> y,
       ya[j] = ad_seed(y[layout_.index(a, j)], j);
       yb[j] = ad_seed(y[layout_.index(b, j)], nv + j);
     }
-    face_flows(f, ya.data(), yb.data(), flows.data());
-    received_flows(f, flows.data(), received.data(), sublimated);
+    const int far = face_flows(f, ya.data(), yb.data(), y, flows.data(), d_far.data());
+    const bool inward = flows[0].value() < 0.0;
+    received_flows(f, flows.data(), received.data(), sublimated, inward);
+    if (far >= 0) {
+      // The far upwind cell enters only through the limiter: d flows[k]/d y[far, s_j] =
+      // delta_kj d_far[j]; what the rows receive is the same linear map of it.
+      for (int j = 0; j < nt; ++j) {
+        if (d_far[j] == 0.0) continue;
+        const long col = layout_.index(far, transported_[j]);
+        unit.fill(0.0);
+        unit[j] = d_far[j];
+        double sub = 0.0;
+        received_flows(f, unit.data(), rec_far.data(), sub, inward);
+        jac.add(layout_.index(f, transported_[j]), col, d_far[j] / grid_.area(f));
+        for (int k = 0; k < nt; ++k)
+          if (rec_far[k] != 0.0)
+            jac.add(layout_.index(f - 1, transported_[k]), col,
+                    -rec_far[k] / grid_.area(f - 1));
+        if (j == 0 && !monitor_slot_.empty() && monitor_slot_[f] >= 0)
+          jac.add(layout_.global_index(monitor_slot_[f]), col, -d_far[0] / mass_unit_);
+        if (f == snow_face_ && sub != 0.0)
+          jac.add(layout_.global_index(g_sub_), col, -sub / mass_unit_);
+      }
+    }
     auto column = [&](int j) {
       return j < nv ? layout_.index(a, j) : layout_.index(b, j - nv);
     };
@@ -257,7 +313,7 @@ std::vector<double> DustTransport::mass_flow(std::span<const double> y) const {
   std::array<double, kMaxVars> flows{};
   for (int f = 0; f < n; ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
-    face_flows(f, &y[layout_.index(a, 0)], &y[layout_.index(b, 0)], flows.data());
+    face_flows(f, &y[layout_.index(a, 0)], &y[layout_.index(b, 0)], y, flows.data());
     out[f] = flows[0];
   }
   return out;

@@ -3,8 +3,9 @@
 //!   dSigma_d/dt + (1/r) d(r F_d)/dr = 0,
 //!   F_d = Sigma_d v_r - D_d Sigma_g d(Sigma_d/Sigma_g)/dr,
 //!   v_r = -2 St eta v_K/(1+St^2) + v_g/(1+St^2),   D_d = alpha c_s H/(1+St^2)
-//! (Youdin & Lithwick 2007 for D_d). Finite volumes on the log grid: first-order upwind
-//! advection and centred diffusion of the concentration on the faces, so the mass moved
+//! (Youdin & Lithwick 2007 for D_d). Finite volumes on the log grid: upwind advection
+//! (first order, or second order with a van Leer-limited reconstruction, option
+//! `limited`) and centred diffusion of the concentration on the faces, so the mass moved
 //! between cells cancels exactly and the budget closes to round-off.
 //! Boundaries (spec §6.3): inner face open (outflow with the upwind state, no diffusive
 //! flux, no inflow; the mass that leaves is booked in the global variable m_out_dust);
@@ -12,7 +13,9 @@
 //! Snow line (spec §6.3, optional): inward flow through its face loses f_ice of its mass.
 //! Other conserved quantities that ride with the dust (the log-moments Q_m, Q_phi of
 //! spec §6.2) are "passengers": add_passenger() transports them with the same operator.
-//! Jacobian: exact, by forward-mode AD of the face flux over its two-cell stencil.
+//! Jacobian: exact, by forward-mode AD of the face flux over its two-cell stencil; with
+//! the limited scheme the far upwind cell's entries are added from the limiter's
+//! analytic derivative (the AD vector holds two cells).
 #include <array>
 #include <span>
 #include <vector>
@@ -31,6 +34,12 @@ struct ViscousStencil;
 struct DustTransportOptions {
   bool drift = true;      //!< advection by v_r (drift, and gas motion when it evolves)
   bool diffusion = true;  //!< turbulent diffusion
+  //! Second-order advection (MUSCL, van Leer 1977 limiter): the face value of r Sigma
+  //! (and of each passenger's r Q) is reconstructed from the upwind cell with the limited
+  //! slope of the upwind cell, psi(a, b) = 2ab/(a + b) for ab > 0, else 0, a the
+  //! difference behind the upwind cell, b the one across the face. The inner face and the
+  //! faces whose far upwind cell lies off the grid stay first order.
+  bool limited = false;
 };
 
 class DustTransport : public PhysicsModule {
@@ -77,14 +86,21 @@ class DustTransport : public PhysicsModule {
   static constexpr int kMaxVars = 8;
   //! Mass-like flows 2 pi r_f F through face f for every transported variable.
   //! ya, yb: states of the two cells of the stencil (f-1 and f; at f = 0: 0 and 1).
+  //! y: the whole state, for the far upwind cell of the limited scheme (values only);
+  //! d_far (if not null): d flows[k] / d y[far cell, transported k]; returns the far
+  //! cell, or -1 when the flows do not depend on one.
   template <class T>
-  void face_flows(int f, const T* ya, const T* yb, T* flows) const;
+  int face_flows(int f, const T* ya, const T* yb, std::span<const double> y, T* flows,
+                 double* d_far = nullptr) const;
   template <class T>
   T velocity(int f, const T* ya, const T* yb, const T& st) const;
   //! What the inner cell of face f receives of `flows` (all of it, except for inward
   //! flow through the snow line), and the mass flow that sublimates there.
+  //! `inward`: the sign of the dust flow (it decides whether the ice sublimates), given
+  //! apart so that the map can be applied to derivatives of the flows too.
   template <class T>
-  void received_flows(int f, const T* flows, T* received, T& sublimated) const;
+  void received_flows(int f, const T* flows, T* received, T& sublimated,
+                      bool inward) const;
 
   const StateLayout& layout_;
   const Grid& grid_;

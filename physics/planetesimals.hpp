@@ -71,6 +71,10 @@ class Planetesimals : public PhysicsModule {
   void add_jacobian(double t, std::span<const double> y,
                     JacobianValues& jac) const override;
 
+  //! Take the growth rates of the coagulation channel from the growth module's memo
+  //! (same state, same options: the same numbers, computed once per RHS).
+  void use_growth_rates(const PorousGrowth* growth) { growth_module_ = growth; }
+
   int coag_slot() const { return coag_slot_; }  //!< -1 when the channel is off
   int si_slot() const { return si_slot_; }      //!< -1 when the channel is off
   //! Conversion rates of cell `cell` at state y [g cm^-2 s^-1]: {coagulation, SI}.
@@ -88,6 +92,7 @@ class Planetesimals : public PhysicsModule {
   physics::GrowthOptions growth_;
   PlanetesimalOptions opt_;
   int coag_slot_ = -1, si_slot_ = -1;
+  const PorousGrowth* growth_module_ = nullptr;
 };
 
 }  // namespace panoptic

@@ -1,6 +1,7 @@
 #include "physics/porous_growth.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 namespace panoptic {
 
@@ -80,8 +81,30 @@ double GrowthStokes::St(int cell, const double* yc) const {
 }
 
 AD GrowthStokes::St(int cell, const AD* yc) const {
-  return physics::stokes_number(codec_.mass(cell, yc), codec_.phi(yc),
-                                species_[cell].rho0, gas_.at(cell, yc), law_);
+  if (ad_cache_.empty()) ad_cache_.resize(species_.size());
+  const int slots[3] = {codec_.sigma_slot, codec_.qm_slot,
+                        codec_.qphi_slot >= 0 ? codec_.qphi_slot : codec_.sigma_slot};
+  const int n_slots = codec_.qphi_slot >= 0 ? 3 : 2;
+  std::array<double, kKey> key;
+  key[0] = yc[codec_.sigma_slot].value();
+  key[1] = yc[codec_.qm_slot].value();
+  key[2] = codec_.qphi_slot >= 0 ? yc[codec_.qphi_slot].value() : 0.0;
+  key[3] = gas_.evolves_slot() >= 0 ? yc[gas_.evolves_slot()].value() : 0.0;
+  AdEntry& e = ad_cache_[cell];
+  if (e.key != key) {
+    // St depends on the state through m and phi (Sigma_d, Q_m, Q_phi); the gas is read
+    // at its value (CellGas::at). Seed those three, evaluate once.
+    AD local[kMaxLocalDerivs];
+    for (int i = 0; i < kMaxLocalDerivs; ++i) local[i] = AD(0.0);
+    for (int i = 0; i < n_slots; ++i) local[slots[i]] = ad_seed(key[i], i);
+    if (gas_.evolves_slot() >= 0) local[gas_.evolves_slot()] = AD(key[3]);
+    const AD st = physics::stokes_number(codec_.mass(cell, local), codec_.phi(local),
+                                         species_[cell].rho0, gas_.at(cell, local), law_);
+    e.key = key;
+    e.st = st.value();
+    for (int i = 0; i < 3; ++i) e.grad[i] = i < n_slots ? st.derivatives()[i] : 0.0;
+  }
+  return ad_chain(e.st, e.grad.data(), slots, n_slots, yc);
 }
 
 PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const CellGas& gas,
@@ -107,14 +130,72 @@ PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const Cell
 }
 
 template <class T>
+physics::ParticleRates<T> PorousGrowth::compute_rates(int cell, const T* yc) const {
+  return physics::particle_rates(yc[codec_.sigma_slot], codec_.mass(cell, yc),
+                                 codec_.phi(yc), stokes_.St(cell, yc), gas_.at(cell, yc),
+                                 species_[cell], opt_);
+}
+
+const physics::ParticleRates<double>& PorousGrowth::cell_rates(int cell,
+                                                               const double* yc) const {
+  if (memo_.empty()) {
+    memo_.resize(species_.size());
+    memo_key_.assign(species_.size(), {-1.0, -1.0, -1.0, -1.0});
+  }
+  const std::array<double, kKey> key{
+      yc[codec_.sigma_slot], yc[codec_.qm_slot],
+      codec_.qphi_slot >= 0 ? yc[codec_.qphi_slot] : 0.0,
+      gas_.evolves_slot() >= 0 ? yc[gas_.evolves_slot()] : 0.0};
+  if (key != memo_key_[cell]) {
+    memo_[cell] = compute_rates(cell, yc);
+    memo_key_[cell] = key;
+  }
+  return memo_[cell];
+}
+
+void PorousGrowth::rates_ad(int cell, const AD* yc, AD& dlnm_dt, AD& dlnphi_dt) const {
+  if (ad_memo_.empty()) ad_memo_.resize(species_.size());
+  const int slots[3] = {codec_.sigma_slot, codec_.qm_slot,
+                        codec_.qphi_slot >= 0 ? codec_.qphi_slot : codec_.sigma_slot};
+  const int n_slots = codec_.qphi_slot >= 0 ? 3 : 2;
+  const std::array<double, kKey> key{
+      yc[codec_.sigma_slot].value(), yc[codec_.qm_slot].value(),
+      codec_.qphi_slot >= 0 ? yc[codec_.qphi_slot].value() : 0.0,
+      gas_.evolves_slot() >= 0 ? yc[gas_.evolves_slot()].value() : 0.0};
+  AdRates& e = ad_memo_[cell];
+  if (e.key != key) {
+    // The rates depend on the state through Sigma_d, m and phi; the gas is read at its
+    // value (CellGas::at). Seed those three, evaluate once.
+    AD local[kMaxLocalDerivs];
+    for (int i = 0; i < kMaxLocalDerivs; ++i) local[i] = AD(0.0);
+    for (int i = 0; i < n_slots; ++i) local[slots[i]] = ad_seed(key[i], i);
+    if (gas_.evolves_slot() >= 0) local[gas_.evolves_slot()] = AD(key[3]);
+    const auto r = compute_rates(cell, local);
+    e.key = key;
+    e.dlnm = r.dlnm_dt.value();
+    e.dlnphi = r.dlnphi_dt.value();
+    for (int i = 0; i < 3; ++i) {
+      e.grad_m[i] = i < n_slots ? r.dlnm_dt.derivatives()[i] : 0.0;
+      e.grad_phi[i] = i < n_slots ? r.dlnphi_dt.derivatives()[i] : 0.0;
+    }
+  }
+  dlnm_dt = ad_chain(e.dlnm, e.grad_m.data(), slots, n_slots, yc);
+  dlnphi_dt = ad_chain(e.dlnphi, e.grad_phi.data(), slots, n_slots, yc);
+}
+
+template <class T>
 void PorousGrowth::cell_sources(int cell, const T* yc, T& dqm, T& dqphi) const {
-  const LocalGas g = gas_.at(cell, yc);
   const T& sigma = yc[codec_.sigma_slot];
-  const T st = stokes_.St(cell, yc);
-  const auto r = physics::particle_rates(sigma, codec_.mass(cell, yc), codec_.phi(yc), st,
-                                         g, species_[cell], opt_);
-  dqm = sigma * r.dlnm_dt;       // spec §6.2
-  dqphi = -sigma * r.dlnphi_dt;  // spec §6.2
+  if constexpr (std::is_same_v<T, double>) {
+    const auto& r = cell_rates(cell, yc);
+    dqm = sigma * r.dlnm_dt;       // spec §6.2
+    dqphi = -sigma * r.dlnphi_dt;  // spec §6.2
+  } else {
+    AD dlnm_dt, dlnphi_dt;
+    rates_ad(cell, yc, dlnm_dt, dlnphi_dt);
+    dqm = sigma * dlnm_dt;       // spec §6.2
+    dqphi = -sigma * dlnphi_dt;  // spec §6.2
+  }
 }
 
 void PorousGrowth::declare_pattern(PatternBuilder& p) const {
@@ -155,10 +236,7 @@ void PorousGrowth::add_jacobian(double, std::span<const double> y,
 
 physics::ParticleRates<double> PorousGrowth::rates(int cell,
                                                    std::span<const double> y) const {
-  const double* yc = &y[layout_.index(cell, 0)];
-  return physics::particle_rates(yc[codec_.sigma_slot], codec_.mass(cell, yc),
-                                 codec_.phi(yc), stokes_.St(cell, yc), gas_.at(cell, yc),
-                                 species_[cell], opt_);
+  return compute_rates(cell, &y[layout_.index(cell, 0)]);
 }
 
 }  // namespace panoptic

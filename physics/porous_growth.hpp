@@ -73,6 +73,9 @@ class GrowthStokes : public StokesModel {
   //! Cached per cell: within one RHS evaluation the transport asks for each cell's St
   //! twice and the growth rates once; the cache is keyed by the cell's state values.
   double St(int cell, const double* ycell) const override;
+  //! The same for the Jacobian: St and its gradient with respect to (Sigma_d, Q_m,
+  //! Q_phi) are computed once per cell state and chained onto the caller's seeds
+  //! (ad_chain), instead of one AD Newton solve per use (four per cell and Jacobian).
   AD St(int cell, const AD* ycell) const override;
 
  private:
@@ -80,6 +83,12 @@ class GrowthStokes : public StokesModel {
   void key_of(const double* yc, double* key) const;
   mutable std::vector<std::array<double, kKey>> cache_key_;
   mutable std::vector<double> cache_st_;
+  struct AdEntry {
+    std::array<double, kKey> key{-1.0, -1.0, -1.0, -1.0};
+    double st = 0.0;
+    std::array<double, 3> grad{};  // d St / d (Sigma_d, Q_m, Q_phi)
+  };
+  mutable std::vector<AdEntry> ad_cache_;
   const ParticleCodec& codec_;
   const CellGas& gas_;
   const std::vector<physics::Species>& species_;
@@ -102,11 +111,21 @@ class PorousGrowth : public PhysicsModule {
 
   //! The rates of cell `cell` at state y, for output and tests.
   physics::ParticleRates<double> rates(int cell, std::span<const double> y) const;
+  //! The same from the cell state `yc`, memoised by its values: within one RHS the
+  //! growth sources and the coagulation channel (physics/planetesimals.cpp) ask for the
+  //! rates of the same state, which cost as much as the rest of the cell's RHS.
+  const physics::ParticleRates<double>& cell_rates(int cell, const double* yc) const;
+  //! d ln m/dt and d ln phi/dt as AD for the Jacobians, memoised the same way: their
+  //! gradients with respect to (Sigma_d, Q_m, Q_phi) are computed once per cell state
+  //! and chained onto the caller's seeds (ad_chain).
+  void rates_ad(int cell, const AD* yc, AD& dlnm_dt, AD& dlnphi_dt) const;
   const physics::GrowthOptions& options() const { return opt_; }
 
  private:
   template <class T>
   void cell_sources(int cell, const T* yc, T& dqm, T& dqphi) const;
+  template <class T>
+  physics::ParticleRates<T> compute_rates(int cell, const T* yc) const;
 
   const StateLayout& layout_;
   const ParticleCodec& codec_;
@@ -114,6 +133,15 @@ class PorousGrowth : public PhysicsModule {
   const StokesModel& stokes_;
   const std::vector<physics::Species>& species_;
   physics::GrowthOptions opt_;
+  static constexpr int kKey = 4;  // Sigma_d, Q_m, Q_phi, Sigma_g: all the rates depend on
+  mutable std::vector<std::array<double, kKey>> memo_key_;
+  mutable std::vector<physics::ParticleRates<double>> memo_;
+  struct AdRates {
+    std::array<double, kKey> key{-1.0, -1.0, -1.0, -1.0};
+    double dlnm = 0.0, dlnphi = 0.0;
+    std::array<double, 3> grad_m{}, grad_phi{};
+  };
+  mutable std::vector<AdRates> ad_memo_;
 };
 
 }  // namespace panoptic

@@ -26,7 +26,22 @@ inline AD ad_seed(double v, int k) {
   return a;
 }
 
+//! An AD value from a value v and its gradient grad[i] = dv/d y[slots[i]] with respect to
+//! entries of a local state, chained onto the derivatives the entries of `y` carry: lets
+//! a costly local law be differentiated once per cell and reused under any seeding.
+inline AD ad_chain(double v, const double* grad, const int* slots, int n, const AD* y) {
+  AD out(v);
+  for (int i = 0; i < n; ++i)
+    if (grad[i] != 0.0) out.derivatives() += grad[i] * y[slots[i]].derivatives();
+  return out;
+}
+
 inline double value_of(double x) { return x; }
 inline double value_of(const AD& x) { return x.value(); }
+//! Any other AutoDiff type (the unit tests use narrower derivative vectors).
+template <class D>
+double value_of(const Eigen::AutoDiffScalar<D>& x) {
+  return x.value();
+}
 
 }  // namespace panoptic

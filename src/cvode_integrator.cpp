@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <numeric>
@@ -27,11 +28,44 @@ std::span<double> as_mut_span(N_Vector v) {
   return {N_VGetArrayPointer(v), static_cast<std::size_t>(N_VGetLength(v))};
 }
 
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
 // No C++ exception may cross these C callbacks: the model's *_nothrow methods return
 // 0 / 1 (recoverable: CVODE retries with a smaller step) / -1 (fatal).
 extern "C" int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
-  return static_cast<CvodeCallbackData*>(data)->model->rhs_nothrow(t, as_span(y),
-                                                                   as_mut_span(ydot));
+  auto* d = static_cast<CvodeCallbackData*>(data);
+  if (d->times == nullptr) return d->model->rhs_nothrow(t, as_span(y), as_mut_span(ydot));
+  const auto t0 = Clock::now();
+  const int flag = d->model->rhs_nothrow(t, as_span(y), as_mut_span(ydot));
+  d->times->rhs_s += seconds_since(t0);
+  ++d->times->n_rhs;
+  return flag;
+}
+
+// KLU set-up and solve timed for CvodeIntegrator::set_profile. A SUNLinearSolver has no
+// user data, so the accumulator is a file-level pointer (benchmarks are single-threaded).
+CallbackTimes* g_ls_times = nullptr;
+extern "C" int timed_lsetup(SUNLinearSolver S, SUNMatrix A) {
+  const auto t0 = Clock::now();
+  const int flag = SUNLinSolSetup_KLU(S, A);
+  if (g_ls_times) {
+    g_ls_times->lsetup_s += seconds_since(t0);
+    ++g_ls_times->n_lsetup;
+  }
+  return flag;
+}
+extern "C" int timed_lsolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
+                            sunrealtype tol) {
+  const auto t0 = Clock::now();
+  const int flag = SUNLinSolSolve_KLU(S, A, x, b, tol);
+  if (g_ls_times) {
+    g_ls_times->lsolve_s += seconds_since(t0);
+    ++g_ls_times->n_lsolve;
+  }
+  return flag;
 }
 
 // The RHS inside the Newton iteration: the same, keeping the iterate, so that a
@@ -44,12 +78,19 @@ extern "C" int nls_rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* 
 
 extern "C" int jac_callback(sunrealtype t, N_Vector y, N_Vector, SUNMatrix J, void* data,
                             N_Vector, N_Vector, N_Vector) {
-  auto& model = *static_cast<CvodeCallbackData*>(data)->model;
+  auto* d = static_cast<CvodeCallbackData*>(data);
+  auto& model = *d->model;
+  const auto t0 = Clock::now();
   // CVODE zeroed J including its index arrays: copy the cached pattern every call.
   model.pattern().copy_structure_to(SUNSparseMatrix_IndexPointers(J),
                                     SUNSparseMatrix_IndexValues(J));
   const auto nnz = static_cast<std::size_t>(model.pattern().nnz());
-  return model.jacobian_nothrow(t, as_span(y), {SUNSparseMatrix_Data(J), nnz});
+  const int flag = model.jacobian_nothrow(t, as_span(y), {SUNSparseMatrix_Data(J), nnz});
+  if (d->times) {
+    d->times->jac_s += seconds_since(t0);
+    ++d->times->n_jac;
+  }
+  return flag;
 }
 
 std::string flag_name(int flag) {
@@ -85,7 +126,7 @@ CvodeIntegrator::CvodeIntegrator(DiskModel& model, double t0, std::span<const do
   sunctx_ = ctx;
   y_ = N_VNew_Serial(n, ctx);
   atol_ = N_VNew_Serial(n, ctx);
-  callback_data_ = {&model_, N_VNew_Serial(n, ctx)};
+  callback_data_ = {&model_, N_VNew_Serial(n, ctx), nullptr};
   N_VConst(0.0, nv(callback_data_.newton_iterate));
   std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(nv(y_)));
   std::copy(opt_.atol.begin(), opt_.atol.end(), N_VGetArrayPointer(nv(atol_)));
@@ -126,6 +167,10 @@ void CvodeIntegrator::create_cvode(double t0) {
   A_ = SUNSparseMatrix(n, n, pattern.nnz(), CSC_MAT, ctx);
   LS_ = SUNLinSol_KLU(nv(y_), static_cast<SUNMatrix>(A_), ctx);
   if (A_ == nullptr || LS_ == nullptr) throw SolverError("KLU set-up failed");
+  if (callback_data_.times) {
+    static_cast<SUNLinearSolver>(LS_)->ops->setup = timed_lsetup;
+    static_cast<SUNLinearSolver>(LS_)->ops->solve = timed_lsolve;
+  }
   check(CVodeSetLinearSolver(cvode_, static_cast<SUNLinearSolver>(LS_),
                              static_cast<SUNMatrix>(A_)),
         "CVodeSetLinearSolver");
@@ -156,6 +201,36 @@ CvodeIntegrator::~CvodeIntegrator() {
 }
 
 std::span<const double> CvodeIntegrator::state() const { return as_span(nv(y_)); }
+
+void CvodeIntegrator::set_profile(CallbackTimes* times) {
+  callback_data_.times = times;
+  g_ls_times = times;
+  auto* ls = static_cast<SUNLinearSolver>(LS_);
+  ls->ops->setup = times ? timed_lsetup : SUNLinSolSetup_KLU;
+  ls->ops->solve = times ? timed_lsolve : SUNLinSolSolve_KLU;
+}
+
+CvodeIntegrator::StepInfo CvodeIntegrator::step_info(int k) const {
+  StepInfo info;
+  CVodeGetCurrentStep(cvode_, &info.h);
+  CVodeGetCurrentOrder(cvode_, &info.order);
+  N_Vector ele = N_VClone(nv(y_)), w = N_VClone(nv(y_));
+  if (CVodeGetEstLocalErrors(cvode_, ele) == CV_SUCCESS &&
+      CVodeGetErrWeights(cvode_, w) == CV_SUCCESS) {
+    const double* e = N_VGetArrayPointer(ele);
+    const double* wt = N_VGetArrayPointer(w);
+    const long n = N_VGetLength(ele);
+    std::vector<std::pair<long, double>> all(n);
+    for (long i = 0; i < n; ++i) all[i] = {i, std::abs(e[i] * wt[i])};
+    const auto m = std::min<std::size_t>(static_cast<std::size_t>(k), all.size());
+    std::partial_sort(all.begin(), all.begin() + m, all.end(),
+                      [](const auto& a, const auto& b) { return a.second > b.second; });
+    info.largest_errors.assign(all.begin(), all.begin() + m);
+  }
+  N_VDestroy(ele);
+  N_VDestroy(w);
+  return info;
+}
 
 void CvodeIntegrator::advance_to(double t_out,
                                  const std::function<void(double, long)>& on_step) {

@@ -24,10 +24,19 @@ struct SolverStats {
   double h_last = 0.0;  //!< last step size [s]
 };
 
+//! Wall time spent in each part of the integration, for benchmarks (see
+//! CvodeIntegrator::set_profile): the model's right-hand side and Jacobian, and KLU's
+//! set-up (factorisation) and solve, timed around each call.
+struct CallbackTimes {
+  double rhs_s = 0.0, jac_s = 0.0, lsetup_s = 0.0, lsolve_s = 0.0;
+  long n_rhs = 0, n_jac = 0, n_lsetup = 0, n_lsolve = 0;
+};
+
 //! What the CVODE callbacks receive as user data.
 struct CvodeCallbackData {
   DiskModel* model = nullptr;
   void* newton_iterate = nullptr;  //!< N_Vector: y of the last nonlinear-solver RHS call
+  CallbackTimes* times = nullptr;  //!< accumulate callback wall times (benchmarks)
 };
 
 struct IntegratorOptions {
@@ -58,6 +67,19 @@ class CvodeIntegrator {
   //! Adds the statistics of the part of the run before a restart, so that stats() and
   //! the step budget solver.max_steps cover the whole run.
   void carry_stats(const SolverStats& before);
+
+  //! Accumulate the wall time of every callback and of KLU into `times` (null: off).
+  //! For benchmarks: the clock reads cost ~50 ns per call.
+  void set_profile(CallbackTimes* times);
+  //! Current step size [s] and order, and the k components with the largest weighted
+  //! local error estimate of the last step (index, |e_i w_i|), largest first: which
+  //! variables limit the step (diagnostics, benchmarks).
+  struct StepInfo {
+    double h = 0.0;
+    int order = 0;
+    std::vector<std::pair<long, double>> largest_errors;
+  };
+  StepInfo step_info(int k) const;
 
   double time() const { return t_; }
   std::span<const double> state() const;

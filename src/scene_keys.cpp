@@ -153,6 +153,10 @@ std::vector<KeySpec> make_keys() {
                "prescribed Stokes number at 1 au (until the growth model sets it)"),
       real("transport.St_slope", "0.0", "", "prescribed St ∝ r^St_slope", -5.0, false,
            5.0, false),
+      choice("transport.advection", "upwind", {"upwind", "van_leer"},
+             "advection scheme of the drift: first-order upwind, or second-order upwind "
+             "with a van Leer-limited reconstruction of r Sigma (MUSCL; widens the "
+             "Jacobian stencil to 4 cells per face)"),
 
       // [growth] spec §3, §4.1: the mass of the mass-dominating particle (variable Q_m)
       flag("growth.enabled", "false",

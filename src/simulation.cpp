@@ -234,7 +234,8 @@ Simulation::Simulation(const Config& cfg)
     viscous_ = gas.get();
     modules.push_back(std::move(gas));
   }
-  DustTransportOptions topt{cfg.flag("transport.drift"), cfg.flag("transport.diffusion")};
+  DustTransportOptions topt{cfg.flag("transport.drift"), cfg.flag("transport.diffusion"),
+                            cfg.str("transport.advection") == "van_leer"};
   auto transport = std::make_unique<DustTransport>(
       *layout_, grid_, *disk_, gas_, stencil, *stokes_, topt, sigma_d_max, dust_mass0_);
   transport_ = transport.get();
@@ -269,6 +270,7 @@ Simulation::Simulation(const Config& cfg)
     auto pl =
         std::make_unique<Planetesimals>(*layout_, *codec_, *cell_gas_, *stokes_, species_,
                                         growth_options_from_config(cfg), po, sigma_d_max);
+    if (growth_) pl->use_growth_rates(growth_);
     planetesimals_ = pl.get();
     modules.push_back(std::move(pl));
   }

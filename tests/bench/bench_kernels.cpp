@@ -1,0 +1,184 @@
+// Micro-benchmarks (Google Benchmark; not a test) of the three kernels of a CVODE step
+// on the fiducial scene (params/fiducial.toml): the right-hand side, the Jacobian
+// evaluation and the KLU factorisation + solve of the Newton matrix I - gamma J, at
+// N = 100, 250 (the default) and 1000 cells. The state is the fiducial run's at
+// t = 300 yr (grown and compacting particles inside ~3 au, monomers further out), so
+// every branch of the rates is visited. The counter `per_cell` is the CPU time per call
+// divided by N (CPU rather than wall time: the machine is shared).
+// Usage: build/tests/bench_kernels [--benchmark_filter=Rhs] [--benchmark_repetitions=5]
+#include <benchmark/benchmark.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "src/config.hpp"
+#include "src/cvode_integrator.hpp"
+#include "src/simulation.hpp"
+#include "src/units.hpp"
+
+using namespace panoptic;
+
+namespace {
+
+constexpr double kStateAgeYr = 300.0;
+
+//! The fiducial scene at N cells and its state at kStateAgeYr (integrated once per N).
+struct Fixture {
+  std::unique_ptr<Simulation> sim;
+  std::vector<double> y;
+};
+
+Fixture& fixture(int n) {
+  static std::map<int, Fixture> cache;
+  auto it = cache.find(n);
+  if (it != cache.end()) return it->second;
+  const std::string scene = std::string(PANOPTIC_SOURCE_DIR) + "/params/fiducial.toml";
+  Fixture fx;
+  const std::vector<std::string> sets{"grid.n_cells=" + std::to_string(n)};
+  fx.sim = std::make_unique<Simulation>(load_scene(scene, sets));
+  const auto y0 = fx.sim->initial_state();
+  CvodeIntegrator cvode(fx.sim->model(), 0.0, y0, fx.sim->integrator_options());
+  cvode.advance_to(kStateAgeYr * units::kYr);
+  fx.y.assign(cvode.state().begin(), cvode.state().end());
+  return cache.emplace(n, std::move(fx)).first->second;
+}
+
+//! Two states a relative 1e-9 apart, alternated so that no per-cell cache (St, rates)
+//! is hit: every call does the full work, as in CVODE's Newton iterations.
+std::vector<double> nudged(const std::vector<double>& y) {
+  std::vector<double> z(y);
+  for (auto& v : z) v *= 1.0 + 1e-9;
+  return z;
+}
+
+void set_per_cell(benchmark::State& state, int n) {
+  state.counters["per_cell"] = benchmark::Counter(
+      n, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_Rhs(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  auto& fx = fixture(n);
+  const auto y2 = nudged(fx.y);
+  std::vector<double> ydot(fx.y.size());
+  bool flip = false;
+  for (auto _ : state) {
+    fx.sim->model().rhs(kStateAgeYr * units::kYr, flip ? y2 : fx.y, ydot);
+    flip = !flip;
+    benchmark::DoNotOptimize(ydot.data());
+  }
+  set_per_cell(state, n);
+}
+
+void BM_Jacobian(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  auto& fx = fixture(n);
+  const auto y2 = nudged(fx.y);
+  std::vector<double> values(fx.sim->model().pattern().nnz());
+  bool flip = false;
+  for (auto _ : state) {
+    fx.sim->model().jacobian(kStateAgeYr * units::kYr, flip ? y2 : fx.y, values);
+    flip = !flip;
+    benchmark::DoNotOptimize(values.data());
+  }
+  set_per_cell(state, n);
+}
+
+//! KLU as CVODE uses it: the first set-up analyses and factorises; later set-ups
+//! refactorise with the same pivot order (timed here), then one solve per Newton
+//! iteration (one per set-up timed here; the fiducial run averages ~10 solves per
+//! set-up, see bench_fiducial).
+void BM_KluFactorSolve(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  auto& fx = fixture(n);
+  const auto& model = fx.sim->model();
+  const auto& pattern = model.pattern();
+  const auto size = static_cast<sunindextype>(fx.y.size());
+  std::vector<double> jac(pattern.nnz());
+  model.jacobian(kStateAgeYr * units::kYr, fx.y, jac);
+  // Newton matrix M = I - gamma J at a step typical of that time (0.1 yr, BDF2).
+  const double gamma = 0.1 * units::kYr * 2.0 / 3.0;
+  SUNContext ctx = nullptr;
+  SUNContext_Create(nullptr, &ctx);
+  SUNMatrix A = SUNSparseMatrix(size, size, pattern.nnz(), CSC_MAT, ctx);
+  N_Vector x = N_VNew_Serial(size, ctx), b = N_VNew_Serial(size, ctx);
+  pattern.copy_structure_to(SUNSparseMatrix_IndexPointers(A),
+                            SUNSparseMatrix_IndexValues(A));
+  double* a = SUNSparseMatrix_Data(A);
+  const auto cols = pattern.col_ptr();
+  const auto rows = pattern.row_index();
+  for (sunindextype j = 0; j < size; ++j)
+    for (sunindextype k = cols[j]; k < cols[j + 1]; ++k)
+      a[k] = (rows[k] == j ? 1.0 : 0.0) - gamma * jac[k];
+  SUNLinearSolver ls = SUNLinSol_KLU(x, A, ctx);
+  SUNLinSolInitialize(ls);
+  SUNLinSolSetup(ls, A);  // analysis + first factorisation, not timed
+  N_VConst(1.0, b);
+  for (auto _ : state) {
+    SUNLinSolSetup(ls, A);
+    SUNLinSolSolve(ls, A, x, b, 0.0);
+    benchmark::DoNotOptimize(N_VGetArrayPointer(x));
+  }
+  set_per_cell(state, n);
+  SUNLinSolFree(ls);
+  N_VDestroy(x);
+  N_VDestroy(b);
+  SUNMatDestroy(A);
+  SUNContext_Free(&ctx);
+}
+
+void BM_KluSolve(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  auto& fx = fixture(n);
+  const auto& model = fx.sim->model();
+  const auto& pattern = model.pattern();
+  const auto size = static_cast<sunindextype>(fx.y.size());
+  std::vector<double> jac(pattern.nnz());
+  model.jacobian(kStateAgeYr * units::kYr, fx.y, jac);
+  const double gamma = 0.1 * units::kYr * 2.0 / 3.0;
+  SUNContext ctx = nullptr;
+  SUNContext_Create(nullptr, &ctx);
+  SUNMatrix A = SUNSparseMatrix(size, size, pattern.nnz(), CSC_MAT, ctx);
+  N_Vector x = N_VNew_Serial(size, ctx), b = N_VNew_Serial(size, ctx);
+  pattern.copy_structure_to(SUNSparseMatrix_IndexPointers(A),
+                            SUNSparseMatrix_IndexValues(A));
+  double* a = SUNSparseMatrix_Data(A);
+  const auto cols = pattern.col_ptr();
+  const auto rows = pattern.row_index();
+  for (sunindextype j = 0; j < size; ++j)
+    for (sunindextype k = cols[j]; k < cols[j + 1]; ++k)
+      a[k] = (rows[k] == j ? 1.0 : 0.0) - gamma * jac[k];
+  SUNLinearSolver ls = SUNLinSol_KLU(x, A, ctx);
+  SUNLinSolInitialize(ls);
+  SUNLinSolSetup(ls, A);
+  N_VConst(1.0, b);
+  for (auto _ : state) {
+    SUNLinSolSolve(ls, A, x, b, 0.0);
+    benchmark::DoNotOptimize(N_VGetArrayPointer(x));
+  }
+  set_per_cell(state, n);
+  SUNLinSolFree(ls);
+  N_VDestroy(x);
+  N_VDestroy(b);
+  SUNMatDestroy(A);
+  SUNContext_Free(&ctx);
+}
+
+}  // namespace
+
+BENCHMARK(BM_Rhs)->Arg(100)->Arg(250)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Jacobian)->Arg(100)->Arg(250)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_KluFactorSolve)
+    ->Arg(100)
+    ->Arg(250)
+    ->Arg(1000)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_KluSolve)->Arg(100)->Arg(250)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK_MAIN();
