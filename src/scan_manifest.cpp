@@ -15,36 +15,11 @@
 #include "src/checkpoint.hpp"
 #include "src/simulation.hpp"
 #include "src/toml_guard.hpp"
+#include "src/toml_literal.hpp"
 
 namespace panoptic {
 namespace fs = std::filesystem;
 namespace {
-
-std::string toml_real(double x) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  std::string s(buf, r.ptr);
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
-
-std::string toml_string(std::string_view s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (c < 0x20 || c == 0x7F) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04X", c);
-      out += buf;
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
 
 const KeySpec* find_key(std::string_view key) {
   for (const KeySpec& spec : scene_keys())
