@@ -9,8 +9,8 @@ namespace panoptic {
 
 std::vector<std::string> preset_overrides(const std::string& preset) {
   if (preset.empty()) return {};
-  if (preset == "fast") return {"grid.n_cells=128", "solver.rtol=1e-4"};
-  if (preset == "accurate") return {"grid.n_cells=500", "solver.rtol=1e-8"};
+  if (preset == "fast") return {"grid.n_cells=128", "solver.rtol=1e-6"};
+  if (preset == "accurate") return {"grid.n_cells=1024", "solver.rtol=1e-8"};
   throw std::invalid_argument("unknown preset '" + preset + "' (fast, accurate)");
 }
 

@@ -189,6 +189,7 @@ def plot(recs, scene, ref_label, path):
         ax.set_yscale("log")
         ax.set_xlabel("CPU time [s]")
         ax.set_title(name + (" (all outcomes)" if name == "max" else ""), fontsize=10)
+    axes.flat[7].axis("off")
     axes.flat[0].set_ylabel("relative error")
     axes.flat[4].set_ylabel("relative error")
     for j, rt in enumerate(rtols):

@@ -269,8 +269,8 @@ def main():
     ap.add_argument("--wall-factor", type=float, default=5.0,
                     help="wall-time limit per run as a multiple of its CPU-time limit")
     ap.add_argument("--resume", action="store_true",
-                    help="keep the results already in WORKDIR/results.jsonl (except "
-                         "timeouts) and run only the other cases")
+                    help="keep the results already in WORKDIR/results.jsonl and run only "
+                         "the other cases (and the selected ones that timed out)")
     ap.add_argument("--only", help="run only cases whose 'scene extreme' matches this regex")
     args = ap.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
@@ -294,9 +294,12 @@ def main():
     if args.resume and os.path.exists(jsonl):
         with open(jsonl) as f:
             kept = [json.loads(line) for line in f if line.strip()]
-        results = [r for r in kept if not r["reason"].startswith("timeout")]
-        done = {(r["scene"], r["extreme"]) for r in results}
+        # a timeout of a selected case is run again; every other result is kept
+        done = {(r["scene"], r["extreme"]) for r in kept
+                if not r["reason"].startswith("timeout")}
         cases = [c for c in cases if (c[0], c[1]) not in done]
+        rerun = {(c[0], c[1]) for c in cases}
+        results = [r for r in kept if (r["scene"], r["extreme"]) not in rerun]
     n_kept = len(results)
     print(f"{len(cases)} runs, {args.jobs} at a time ({n_kept} kept)", flush=True)
     t0 = time.monotonic()
