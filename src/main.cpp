@@ -29,6 +29,7 @@
 #include "src/diagnostics.hpp"
 #include "src/error.hpp"
 #include "src/observe.hpp"
+#include "src/presets.hpp"
 #include "src/run_output.hpp"
 #include "src/scan.hpp"
 #include "src/simulation.hpp"
@@ -412,6 +413,15 @@ int main(int argc, char** argv) {
                    "continue the run of this checkpoint (<output>.chk.h5); the output "
                    "file is continued")
       ->excludes(overwrite_opt);
+  // accuracy presets (src/presets.hpp): overrides applied before --set, so --set wins
+  bool fast = false, accurate = false;
+  auto* fast_opt = run_cmd->add_flag(
+      "--fast", fast,
+      "preset: coarser grid and looser tolerance (README, Work-precision)");
+  run_cmd
+      ->add_flag("--accurate", accurate,
+                 "preset: finer grid and tighter tolerance (README, Work-precision)")
+      ->excludes(fast_opt);
   run_cmd->add_option("--max-wall", args.max_wall,
                       "stop with a checkpoint (exit code 75) before this wall time, "
                       "e.g. 90m, 2h, 1h30m, 3600s");
@@ -507,7 +517,10 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run_cmd) return run(args);
+    if (*run_cmd) {
+      overrides = with_preset(fast ? "fast" : accurate ? "accurate" : "", overrides);
+      return run(args);
+    }
     if (*check_cmd) return check(scene, overrides);
     if (*scan_cmd) return run_scan(scan_opts);
     if (*track_cmd) return track(scene, overrides, r0_au, a_stop_cm, t_max_yr);
