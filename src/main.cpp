@@ -230,6 +230,14 @@ int run(const RunArgs& a) {
   // checkpoint is written at a snapshot when due; a stop checkpoints the last one
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  {  // a parent (panoptic scan) may have blocked them until the handlers are in place;
+     // a stop that arrived meanwhile is delivered now and handled at the first step
+    sigset_t stop_signals;
+    sigemptyset(&stop_signals);
+    sigaddset(&stop_signals, SIGTERM);
+    sigaddset(&stop_signals, SIGINT);
+    sigprocmask(SIG_UNBLOCK, &stop_signals, nullptr);
+  }
   const bool reinit = cfg.flag("solver.reinit_at_snapshots");
   CheckpointSchedule schedule(cfg.real("checkpoint.every_wall_s"),
                               cfg.integer("checkpoint.every_snapshots"), 0.0);

@@ -150,6 +150,14 @@ pid_t start_task(const ScanTask& task) {
     // rerun writes too.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(127);
+    // SIGTERM/SIGINT stay blocked (pending) until `panoptic run` has installed its
+    // handlers and unblocks them: a stop that arrives while the run is starting is then
+    // a checkpointed stop (exit 75), not a death by the default action.
+    sigset_t stop_signals;
+    sigemptyset(&stop_signals);
+    sigaddset(&stop_signals, SIGTERM);
+    sigaddset(&stop_signals, SIGINT);
+    sigprocmask(SIG_BLOCK, &stop_signals, nullptr);
     const int out =
         open(task.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     const int err =
