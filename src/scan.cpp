@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -276,21 +277,23 @@ struct MpiSession {
   int rank = 0, size = 1;
 };
 
-//! Waits (polling, not spinning) for a message from rank 0 with one of the tags; returns
-//! its tag and bytes.
+//! A message from rank 0 if one is waiting: its tag and bytes.
+std::optional<std::pair<int, std::string>> poll_master() {
+  int flag = 0;
+  MPI_Status st;
+  MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
+  if (!flag) return std::nullopt;
+  int n = 0;
+  MPI_Get_count(&st, MPI_CHAR, &n);
+  std::string bytes(static_cast<std::size_t>(n), '\0');
+  MPI_Recv(bytes.data(), n, MPI_CHAR, 0, st.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return std::make_pair(st.MPI_TAG, std::move(bytes));
+}
+
+//! Waits (polling, not spinning) for a message from rank 0; returns its tag and bytes.
 std::pair<int, std::string> receive_from_master() {
   for (;;) {
-    int flag = 0;
-    MPI_Status st;
-    MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
-    if (flag) {
-      int n = 0;
-      MPI_Get_count(&st, MPI_CHAR, &n);
-      std::string bytes(static_cast<std::size_t>(n), '\0');
-      MPI_Recv(bytes.data(), n, MPI_CHAR, 0, st.MPI_TAG, MPI_COMM_WORLD,
-               MPI_STATUS_IGNORE);
-      return {st.MPI_TAG, bytes};
-    }
+    if (auto msg = poll_master()) return *std::move(msg);
     nap();
   }
 }
@@ -312,20 +315,13 @@ int mpi_worker(const MpiSession& mpi, int jobs) {
       asked = true;
     }
     if (asked) {
-      int flag = 0;
-      MPI_Status st;
-      MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
-      if (flag) {
-        int n = 0;
-        MPI_Get_count(&st, MPI_CHAR, &n);
-        std::string bytes(static_cast<std::size_t>(n), '\0');
-        MPI_Recv(bytes.data(), n, MPI_CHAR, 0, st.MPI_TAG, MPI_COMM_WORLD,
-                 MPI_STATUS_IGNORE);
+      if (auto reply = poll_master()) {
+        const auto& [reply_tag, bytes] = *reply;
         asked = false;
         busy = true;
-        if (st.MPI_TAG == kTask && !stopping) {
+        if (reply_tag == kTask && !stopping) {
           pool.start(ScanTask::deserialize(bytes));
-        } else if (st.MPI_TAG == kTask) {  // stopping: record it as interrupted, unrun
+        } else if (reply_tag == kTask) {  // stopping: record it as interrupted, unrun
           const ScanTask t = ScanTask::deserialize(bytes);
           const RunRecord r = finish_task(t, W_EXITCODE(kExitStopped, 0), 0.0,
                                           "rank" + std::to_string(mpi.rank));
