@@ -1,5 +1,6 @@
 #include "physics/porous_growth.hpp"
 
+#include <array>
 #include <cmath>
 #include <type_traits>
 
@@ -11,6 +12,38 @@ namespace {
 // Sharpness of the soft clamps of ln m and ln(1/phi): at the bound the value is shifted
 // by ln 2/k = 0.007 (phi = 0.993 for a monomer), invisible beyond 0.05 from it.
 constexpr double kClampSharpness = 100.0;
+
+double value_of(double x) { return x; }
+double value_of(const AD& x) { return x.value(); }
+
+//! The state a cell's particle laws depend on, the key of the per-cell caches of St and
+//! of the rates: Sigma_d, Q_m, Q_phi (0 without porosity), Sigma_g (0 if the gas is
+//! static).
+template <class T>
+std::array<double, 4> cell_key(const ParticleCodec& codec, int gas_slot, const T* yc) {
+  return {value_of(yc[codec.sigma_slot]), value_of(yc[codec.qm_slot]),
+          codec.qphi_slot >= 0 ? value_of(yc[codec.qphi_slot]) : 0.0,
+          gas_slot >= 0 ? value_of(yc[gas_slot]) : 0.0};
+}
+
+//! The state components the particle laws are differentiated by: Sigma_d, Q_m and (with
+//! porosity) Q_phi, as the derivative directions 0, 1, 2 of a per-cell evaluation whose
+//! gradient ad_chain carries onto each caller's seeds.
+struct Seeds {
+  int slots[3];
+  int n;
+  explicit Seeds(const ParticleCodec& codec)
+      : slots{codec.sigma_slot, codec.qm_slot,
+              codec.qphi_slot >= 0 ? codec.qphi_slot : codec.sigma_slot},
+        n(codec.qphi_slot >= 0 ? 3 : 2) {}
+  //! The cell's state at `key` with the seeds as the AD directions; the gas is read at
+  //! its value (CellGas::at).
+  void seed(const std::array<double, 4>& key, int gas_slot, AD* local) const {
+    for (int i = 0; i < kMaxLocalDerivs; ++i) local[i] = AD(0.0);
+    for (int i = 0; i < n; ++i) local[slots[i]] = ad_seed(key[i], i);
+    if (gas_slot >= 0) local[gas_slot] = AD(key[3]);
+  }
+};
 }  // namespace
 
 template <class T>
@@ -58,20 +91,12 @@ LocalGas CellGas::scaled(int cell, double sigma_g) const {
   return g;
 }
 
-void GrowthStokes::key_of(const double* yc, double* key) const {
-  key[0] = yc[codec_.sigma_slot];
-  key[1] = yc[codec_.qm_slot];
-  key[2] = codec_.qphi_slot >= 0 ? yc[codec_.qphi_slot] : 0.0;
-  key[3] = gas_.evolves_slot() >= 0 ? yc[gas_.evolves_slot()] : 0.0;
-}
-
 double GrowthStokes::St(int cell, const double* yc) const {
   if (cache_st_.empty()) {
     cache_st_.assign(species_.size(), 0.0);
     cache_key_.assign(species_.size(), {-1.0, -1.0, -1.0, -1.0});
   }
-  std::array<double, kKey> key;
-  key_of(yc, key.data());
+  const auto key = cell_key(codec_, gas_.evolves_slot(), yc);
   if (key == cache_key_[cell]) return cache_st_[cell];
   const double st = physics::stokes_number(codec_.mass(cell, yc), codec_.phi(yc),
                                            species_[cell].rho0, gas_.at(cell, yc), law_);
@@ -82,29 +107,20 @@ double GrowthStokes::St(int cell, const double* yc) const {
 
 AD GrowthStokes::St(int cell, const AD* yc) const {
   if (ad_cache_.empty()) ad_cache_.resize(species_.size());
-  const int slots[3] = {codec_.sigma_slot, codec_.qm_slot,
-                        codec_.qphi_slot >= 0 ? codec_.qphi_slot : codec_.sigma_slot};
-  const int n_slots = codec_.qphi_slot >= 0 ? 3 : 2;
-  std::array<double, kKey> key;
-  key[0] = yc[codec_.sigma_slot].value();
-  key[1] = yc[codec_.qm_slot].value();
-  key[2] = codec_.qphi_slot >= 0 ? yc[codec_.qphi_slot].value() : 0.0;
-  key[3] = gas_.evolves_slot() >= 0 ? yc[gas_.evolves_slot()].value() : 0.0;
+  const auto key = cell_key(codec_, gas_.evolves_slot(), yc);
+  const Seeds seeds(codec_);
   AdEntry& e = ad_cache_[cell];
   if (e.key != key) {
-    // St depends on the state through m and phi (Sigma_d, Q_m, Q_phi); the gas is read
-    // at its value (CellGas::at). Seed those three, evaluate once.
+    // St depends on the state through m and phi (Sigma_d, Q_m, Q_phi): evaluate once.
     AD local[kMaxLocalDerivs];
-    for (int i = 0; i < kMaxLocalDerivs; ++i) local[i] = AD(0.0);
-    for (int i = 0; i < n_slots; ++i) local[slots[i]] = ad_seed(key[i], i);
-    if (gas_.evolves_slot() >= 0) local[gas_.evolves_slot()] = AD(key[3]);
+    seeds.seed(key, gas_.evolves_slot(), local);
     const AD st = physics::stokes_number(codec_.mass(cell, local), codec_.phi(local),
                                          species_[cell].rho0, gas_.at(cell, local), law_);
     e.key = key;
     e.st = st.value();
-    for (int i = 0; i < 3; ++i) e.grad[i] = i < n_slots ? st.derivatives()[i] : 0.0;
+    for (int i = 0; i < 3; ++i) e.grad[i] = i < seeds.n ? st.derivatives()[i] : 0.0;
   }
-  return ad_chain(e.st, e.grad.data(), slots, n_slots, yc);
+  return ad_chain(e.st, e.grad.data(), seeds.slots, seeds.n, yc);
 }
 
 PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const CellGas& gas,
@@ -142,10 +158,7 @@ const physics::ParticleRates<double>& PorousGrowth::cell_rates(int cell,
     memo_.resize(species_.size());
     memo_key_.assign(species_.size(), {-1.0, -1.0, -1.0, -1.0});
   }
-  const std::array<double, kKey> key{
-      yc[codec_.sigma_slot], yc[codec_.qm_slot],
-      codec_.qphi_slot >= 0 ? yc[codec_.qphi_slot] : 0.0,
-      gas_.evolves_slot() >= 0 ? yc[gas_.evolves_slot()] : 0.0};
+  const auto key = cell_key(codec_, gas_.evolves_slot(), yc);
   if (key != memo_key_[cell]) {
     memo_[cell] = compute_rates(cell, yc);
     memo_key_[cell] = key;
@@ -155,32 +168,25 @@ const physics::ParticleRates<double>& PorousGrowth::cell_rates(int cell,
 
 void PorousGrowth::rates_ad(int cell, const AD* yc, AD& dlnm_dt, AD& dlnphi_dt) const {
   if (ad_memo_.empty()) ad_memo_.resize(species_.size());
-  const int slots[3] = {codec_.sigma_slot, codec_.qm_slot,
-                        codec_.qphi_slot >= 0 ? codec_.qphi_slot : codec_.sigma_slot};
-  const int n_slots = codec_.qphi_slot >= 0 ? 3 : 2;
-  const std::array<double, kKey> key{
-      yc[codec_.sigma_slot].value(), yc[codec_.qm_slot].value(),
-      codec_.qphi_slot >= 0 ? yc[codec_.qphi_slot].value() : 0.0,
-      gas_.evolves_slot() >= 0 ? yc[gas_.evolves_slot()].value() : 0.0};
+  const auto key = cell_key(codec_, gas_.evolves_slot(), yc);
+  const Seeds seeds(codec_);
+  const int n = seeds.n;
   AdRates& e = ad_memo_[cell];
   if (e.key != key) {
-    // The rates depend on the state through Sigma_d, m and phi; the gas is read at its
-    // value (CellGas::at). Seed those three, evaluate once.
+    // The rates depend on the state through Sigma_d, m and phi: evaluate once.
     AD local[kMaxLocalDerivs];
-    for (int i = 0; i < kMaxLocalDerivs; ++i) local[i] = AD(0.0);
-    for (int i = 0; i < n_slots; ++i) local[slots[i]] = ad_seed(key[i], i);
-    if (gas_.evolves_slot() >= 0) local[gas_.evolves_slot()] = AD(key[3]);
+    seeds.seed(key, gas_.evolves_slot(), local);
     const auto r = compute_rates(cell, local);
     e.key = key;
     e.dlnm = r.dlnm_dt.value();
     e.dlnphi = r.dlnphi_dt.value();
     for (int i = 0; i < 3; ++i) {
-      e.grad_m[i] = i < n_slots ? r.dlnm_dt.derivatives()[i] : 0.0;
-      e.grad_phi[i] = i < n_slots ? r.dlnphi_dt.derivatives()[i] : 0.0;
+      e.grad_m[i] = i < n ? r.dlnm_dt.derivatives()[i] : 0.0;
+      e.grad_phi[i] = i < n ? r.dlnphi_dt.derivatives()[i] : 0.0;
     }
   }
-  dlnm_dt = ad_chain(e.dlnm, e.grad_m.data(), slots, n_slots, yc);
-  dlnphi_dt = ad_chain(e.dlnphi, e.grad_phi.data(), slots, n_slots, yc);
+  dlnm_dt = ad_chain(e.dlnm, e.grad_m.data(), seeds.slots, n, yc);
+  dlnphi_dt = ad_chain(e.dlnphi, e.grad_phi.data(), seeds.slots, n, yc);
 }
 
 template <class T>

@@ -80,7 +80,6 @@ class GrowthStokes : public StokesModel {
 
  private:
   static constexpr int kKey = 4;
-  void key_of(const double* yc, double* key) const;
   mutable std::vector<std::array<double, kKey>> cache_key_;
   mutable std::vector<double> cache_st_;
   struct AdEntry {
