@@ -53,6 +53,18 @@ struct GrowthOptions {
   double phi_bounce = 0.3;
 };
 
+//! Longest floor-relaxation time t_relax / 0.01, in units of 1/Omega (spec §4.4 has 1).
+//! The floor push softplus_100(ln floor - ln phi)/t_relax must stay small next to the
+//! hit-and-stick decline |s_hs|/t_grow while phi is still above the floor; with the
+//! spec's t_relax = 0.01 min(t_grow, 1/Omega) the push outruns growth by t_grow Omega
+//! wherever growth is slow, and its tail lifts phi above the floor before phi reaches it
+//! (at t_grow Omega = 1e4, phi cannot fall below 1.13 floor). Measured on fiducial
+//! (issue 7): the planetesimal mass converges in the sharpness k as 12.05, 13.18, 13.44,
+//! 13.51 M_earth for k = 30, 100, 300, 1000 with the 1/Omega cap, and as 13.42 (k = 100)
+//! and 13.51 (k = 300) with this cap, at 19% fewer steps for k = 100. The cap keeps the
+//! relaxation going where growth stalls (erosion, fragmentation) on <= 1/Omega.
+inline constexpr double kRelaxCapOmega = 100.0;
+
 //! Softplus with sharpness k: ln(1 + e^(k z))/k, = z for k z >> 1, -> 0 for k z << -1.
 template <class T>
 T softplus(const T& z, double k) {
@@ -182,10 +194,11 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
       floor = o.gas_compaction ? soft_max(floor, phi_grav) : phi_grav;
     }
     floor = soft_min(floor, T(o.phi_max));
-    // spec §4.4: relax up to the floor on t_relax = 0.01 min(t_grow, 1/Omega)
+    // spec §4.4: relax up to the floor on t_relax = 0.01 min(t_grow, t_cap), with
+    // t_cap = kRelaxCapOmega/Omega where the spec has 1/Omega (see kRelaxCapOmega).
     const T rate_grow = growth + 1e-30;
     const T t_grow = 1.0 / rate_grow;
-    const T t_relax = 0.01 * soft_min(t_grow, T(1.0 / gas.omega_k));
+    const T t_relax = 0.01 * soft_min(t_grow, T(kRelaxCapOmega / gas.omega_k));
     // softplus sharpness 100: below the floor by z the push is e^(-100 z)-small, so phi
     // follows max(phi_dyn, floor) to a few per cent (k = 1 or 10 leaks: phi would sit
     // a factor ~2 above the floor wherever t_relax << t_grow).
