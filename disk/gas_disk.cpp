@@ -90,14 +90,10 @@ std::vector<double> dlnp_dlnr_centres(const GasDisk& disk, const Grid& grid,
   const int n = grid.n_cells();
   std::vector<double> lnp(n), out(n);
   for (int i = 0; i < n; ++i) lnp[i] = std::log(disk.pressure(sigma_g[i], grid.r_c(i)));
-  const double h = grid.dlnr();  // uniform spacing of ln r_c
+  // centred differences in ln r (one-sided at the edges), on any spacing of the centres
   for (int i = 0; i < n; ++i) {
-    if (i == 0)
-      out[i] = (lnp[1] - lnp[0]) / h;
-    else if (i == n - 1)
-      out[i] = (lnp[n - 1] - lnp[n - 2]) / h;
-    else
-      out[i] = (lnp[i + 1] - lnp[i - 1]) / (2.0 * h);
+    const int lo = i > 0 ? i - 1 : 0, hi = i < n - 1 ? i + 1 : n - 1;
+    out[i] = (lnp[hi] - lnp[lo]) / std::log(grid.r_c(hi) / grid.r_c(lo));
   }
   return out;
 }

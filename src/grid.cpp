@@ -7,11 +7,21 @@
 
 namespace panoptic {
 
-Grid::Grid(double r_in, double r_out, int n)
-    : n_(n), dlnr_(std::log(r_out / r_in) / n), r_c_(n), r_f_(n + 1), area_(n) {
-  for (int i = 0; i <= n; ++i) r_f_[i] = r_in * std::exp(dlnr_ * i);
-  r_f_[n] = r_out;  // exact outer edge, whatever the rounding of exp
+Grid::Grid(double r_in, double r_out, int n, double stretch)
+    : n_(n), stretch_(stretch), r_c_(n), r_f_(n + 1), area_(n), dlnr_(n) {
+  if (stretch == 0.0) {
+    const double h = std::log(r_out / r_in) / n;
+    for (int i = 0; i <= n; ++i) r_f_[i] = r_in * std::exp(h * i);
+  } else {
+    // d ln r = r^p du/(-p) for u = r^-p: faces uniform in u put d ln r ∝ r^p.
+    const double u0 = std::pow(r_in, -stretch), u1 = std::pow(r_out, -stretch);
+    for (int i = 0; i <= n; ++i)
+      r_f_[i] = std::pow(u0 + (u1 - u0) * i / n, -1.0 / stretch);
+  }
+  r_f_[0] = r_in;
+  r_f_[n] = r_out;  // exact edges, whatever the rounding
   for (int i = 0; i < n; ++i) {
+    dlnr_[i] = std::log(r_f_[i + 1] / r_f_[i]);
     r_c_[i] = std::sqrt(r_f_[i] * r_f_[i + 1]);
     area_[i] = units::kPi * (r_f_[i + 1] * r_f_[i + 1] - r_f_[i] * r_f_[i]);
   }

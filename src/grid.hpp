@@ -1,16 +1,19 @@
 #pragma once
-//! Log-spaced finite-volume radial grid (spec §6.4, §10.2). Immutable after construction.
-//! Faces r_f[0..n] are log-spaced between r_in and r_out; the centre of cell i is the
-//! geometric mean of its faces, so on this grid every face is also the geometric mean of
-//! its two neighbouring centres (this makes face interpolation of power laws exact).
+//! Finite-volume radial grid (spec §6.4, §10.2). Immutable after construction.
+//! Faces r_f[0..n] run from r_in to r_out, log-spaced (stretch 0) or with the spacing
+//! d ln r ∝ r^stretch (faces uniform in r^-stretch): stretch > 0 refines the inner disk,
+//! where growth fronts are narrowest. The centre of cell i is the geometric mean of its
+//! faces; on the log-spaced grid every face is also the geometric mean of its two
+//! neighbouring centres (face interpolation of power laws is then exact).
+#include <cmath>
 #include <vector>
 
 namespace panoptic {
 
 class Grid {
  public:
-  //! r_in, r_out [cm], n cells.
-  Grid(double r_in, double r_out, int n);
+  //! r_in, r_out [cm], n cells, stretch: d ln r ∝ r^stretch (0: log-spaced).
+  Grid(double r_in, double r_out, int n, double stretch = 0.0);
 
   int n_cells() const { return n_; }
   double r_c(int i) const { return r_c_[i]; }  //!< cell centre [cm]
@@ -18,7 +21,13 @@ class Grid {
   double area(int i) const {
     return area_[i];
   }  //!< annulus area pi (r_f(i+1)^2 - r_f(i)^2) [cm^2]
-  double dlnr() const { return dlnr_; }  //!< ln(r_f(i+1)/r_f(i))
+  double dlnr(int i) const {
+    return dlnr_[i];
+  }  //!< ln(r_f(i+1)/r_f(i)), the log width of cell i
+  //! ln(r_c(i)/r_c(i-1)), the log distance between the centres either side of face i
+  //! (i >= 1)
+  double dlnr_centres(int i) const { return std::log(r_c_[i] / r_c_[i - 1]); }
+  double stretch() const { return stretch_; }
   const std::vector<double>& centres() const { return r_c_; }
   const std::vector<double>& faces() const { return r_f_; }
   const std::vector<double>& areas() const { return area_; }
@@ -27,8 +36,8 @@ class Grid {
 
  private:
   int n_;
-  double dlnr_;
-  std::vector<double> r_c_, r_f_, area_;
+  double stretch_;
+  std::vector<double> r_c_, r_f_, area_, dlnr_;
 };
 
 }  // namespace panoptic

@@ -268,9 +268,12 @@ std::vector<KeySpec> make_keys() {
               "pebble-flux samples (/timeseries) per snapshot interval", 1, 1e5),
 
       // [grid] spec §10.2
-      integer("grid.n_cells", "250", "number of log-spaced radial cells", 4, 1e6),
+      integer("grid.n_cells", "250", "number of radial cells (spacing: grid.stretch)", 4, 1e6),
       positive("grid.r_in_au", "1.0", "au", "inner edge (open: outflow, booked)"),
       positive("grid.r_out_au", "300.0", "au", "outer edge (closed: zero flux)"),
+      real("grid.stretch", "0.0", "",
+           "cell spacing d ln r ∝ r^stretch: 0 log-spaced, > 0 finer in the inner disk",
+           -2.0, true, 2.0, true),
 
       // [solver] CVODE BDF + KLU
       real("solver.rtol", "1e-6", "", "CVODE relative tolerance", 1e-14, false, 0.1,

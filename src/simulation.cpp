@@ -150,7 +150,7 @@ void validate_scene(const Config& cfg) {
 Simulation::Simulation(const Config& cfg)
     : cfg_(cfg),
       grid_(cfg.real("grid.r_in_au") * kAu, cfg.real("grid.r_out_au") * kAu,
-            static_cast<int>(cfg.integer("grid.n_cells"))),
+            static_cast<int>(cfg.integer("grid.n_cells")), cfg.real("grid.stretch")),
       disk_(make_disk(cfg)) {
   const int n = grid_.n_cells();
   gas_.static_sigma.resize(n);
@@ -567,9 +567,14 @@ double Simulation::dust_mass_sublimated(std::span<const double> y) const {
 std::string Simulation::summary() const {
   std::ostringstream s;
   const auto& L = *layout_;
-  s << "grid: " << grid_.n_cells() << " cells, " << grid_.r_f(0) / kAu << " - "
-    << grid_.r_f(grid_.n_cells()) / kAu << " au (dr/r = " << std::exp(grid_.dlnr()) - 1
-    << ")\n";
+  const int n = grid_.n_cells();
+  s << "grid: " << n << " cells, " << grid_.r_f(0) / kAu << " - " << grid_.r_f(n) / kAu
+    << " au (dr/r = ";
+  if (grid_.stretch() == 0.0)
+    s << std::expm1(grid_.dlnr(0)) << ")\n";
+  else
+    s << std::expm1(grid_.dlnr(0)) << " at r_in to " << std::expm1(grid_.dlnr(n - 1))
+      << " at r_out, stretch " << grid_.stretch() << ")\n";
   s << "gas disk: " << disk_->name()
     << (gas_.evolves() ? ", viscously evolving" : ", static") << "; snow line at "
     << disk_->r_snow() / kAu << " au\n";

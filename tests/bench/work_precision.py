@@ -30,7 +30,7 @@ error bounds how far the reference itself can be trusted.
     /usr/bin/python3 tests/bench/work_precision.py --exe build/panoptic --workdir DIR \
         [--scenes fiducial erosion_40] [--n-cells 32 64 ...] [--rtol 1e-2 1e-4 ...] \
         [--ref-n 2048 --ref-rtol 1e-8] [--ref2-n 1024 --ref2-rtol 1e-8] \
-        [--timeout 1800] [--max-cost 1e9] [--jobs 1]
+        [--stretch 0 0.5] [--timeout 1800] [--max-cost 1e9] [--jobs 1]
 
 writes DIR/work_precision.json (every run: settings, costs, errors, command),
 DIR/work_precision.csv, DIR/work_precision_<scene>.png (error against CPU time, one
@@ -38,12 +38,13 @@ panel per outcome) and DIR/work_precision.md (a table per scene, Pareto-optimal 
 bold). Finished outputs in DIR are reused (delete DIR to measure afresh; --fresh ignores
 them). A run still going after --timeout seconds or refused by the step budget is
 recorded as not finished. --max-cost skips runs whose N * rtol^(-1/5) exceeds it (a
-rough cost model of BDF: steps grow like rtol^(-1/order) and the work per step like N)."""
+rough cost model of BDF: steps grow like rtol^(-1/order) and the work per step like N).
+--stretch adds grid.stretch values (cell spacing d ln r ∝ r^stretch; the references stay
+log-spaced)."""
 import argparse
 import concurrent.futures
 import csv
 import json
-import math
 import os
 import subprocess
 import sys
@@ -60,18 +61,21 @@ OUTCOMES = [f"sigma_d@{t:.0e}".replace("+0", "") for t in T_SIGMA] + [
     "m_pl", "r_pl_out", "m_peb_snow"]
 
 
-def tag(scene, n, rtol):
-    return f"{scene}_N{n}_rtol{rtol:.0e}"
+def tag(scene, n, rtol, stretch=0.0):
+    return f"{scene}_N{n}_rtol{rtol:.0e}" + (f"_s{stretch:g}" if stretch else "")
 
 
-def run_one(exe, workdir, scene, n, rtol, timeout, max_steps, fresh):
-    """Runs one (scene, N, rtol) unless a finished output is there; returns its record."""
-    out = os.path.join(workdir, tag(scene, n, rtol) + ".h5")
+def run_one(exe, workdir, scene, n, rtol, timeout, max_steps, fresh, stretch=0.0):
+    """Runs one (scene, N, rtol, grid stretch) unless a finished output is there; returns
+    its record."""
+    out = os.path.join(workdir, tag(scene, n, rtol, stretch) + ".h5")
     meta = out + ".json"
     cmd = [exe, "run", os.path.join(REPO, "params", scene + ".toml"), "-o", out,
            "--overwrite", "--set", f"grid.n_cells={n}", "--set", f"solver.rtol={rtol:g}",
+           "--set", f"grid.stretch={stretch:g}",
            "--set", "checkpoint.every_wall_s=0", "--set", f"solver.max_steps={max_steps}"]
-    rec = {"scene": scene, "n_cells": n, "rtol": rtol, "cmd": " ".join(cmd), "out": out}
+    rec = {"scene": scene, "n_cells": n, "rtol": rtol, "stretch": stretch,
+           "cmd": " ".join(cmd), "out": out}
     if not fresh and os.path.exists(meta):
         with open(meta) as f:
             old = json.load(f)
@@ -168,17 +172,21 @@ def plot(recs, scene, ref_label, path):
     import matplotlib.pyplot as plt
     done = [r for r in recs if r.get("finished")]
     ns = sorted({r["n_cells"] for r in done})
+    series = sorted({(r.get("stretch", 0.0), r["n_cells"]) for r in done})
     rtols = sorted({r["rtol"] for r in done})
     cmap = plt.get_cmap("viridis")
     markers = "os^Dv<>ph*"
     fig, axes = plt.subplots(2, 4, figsize=(16, 7.5), constrained_layout=True)
     for ax, name in zip(axes.flat, OUTCOMES + ["max"]):
-        for i, n in enumerate(ns):
-            rs = sorted((r for r in done if r["n_cells"] == n), key=lambda r: r["rtol"])
+        for st, n in series:
+            i = ns.index(n)
+            rs = sorted((r for r in done if r["n_cells"] == n and
+                         r.get("stretch", 0.0) == st), key=lambda r: r["rtol"])
             x = [r["cpu"] for r in rs]
             y = [max(r["err"][name], 1e-12) for r in rs]
-            ax.plot(x, y, "-", color=cmap(i / max(1, len(ns) - 1)), lw=0.8,
-                    label=f"N = {n}" if name == OUTCOMES[0] else None)
+            label = f"N = {n}" + (f", stretch {st:g}" if st else "")
+            ax.plot(x, y, "--" if st else "-", color=cmap(i / max(1, len(ns) - 1)), lw=0.8,
+                    label=label if name == OUTCOMES[0] else None)
             for r in rs:
                 ax.plot(r["cpu"], max(r["err"][name], 1e-12),
                         markers[rtols.index(r["rtol"]) % len(markers)],
@@ -218,16 +226,18 @@ def markdown(by_scene, refs, sha):
                         f"{ref['ref2']['rtol']:.0e}: max {fmt(ref['ref2']['err']['max'])}"
                         f" ({', '.join(f'{k} {fmt(v)}' for k, v in ref['ref2']['err'].items() if k != 'max')})"
                         if ref.get("ref2") else "") + ")\n")
-        lines.append("| N | rtol | CPU [s] | steps | RHS | Jac | " +
+        lines.append("| N | stretch | rtol | CPU [s] | steps | RHS | Jac | " +
                      " | ".join(OUTCOMES) + " | max |")
-        lines.append("|---|---|---|---|---|---|" + "---|" * (len(OUTCOMES) + 1))
-        for r in sorted(recs, key=lambda r: (r["n_cells"], -r["rtol"])):
+        lines.append("|---|---|---|---|---|---|---|" + "---|" * (len(OUTCOMES) + 1))
+        for r in sorted(recs, key=lambda r: (r.get("stretch", 0.0), r["n_cells"], -r["rtol"])):
+            st = f"{r.get('stretch', 0.0):g}"
             if not r.get("finished"):
-                lines.append(f"| {r['n_cells']} | {r['rtol']:.0e} | > {r['wall']:.0f} | "
+                lines.append(f"| {r['n_cells']} | {st} | {r['rtol']:.0e} | > {r['wall']:.0f} | "
                              f"not finished: {r.get('error', '')} |" + " |" * (len(OUTCOMES) + 3))
                 continue
             b = "**" if r.get("pareto") else ""
-            lines.append(f"| {b}{r['n_cells']}{b} | {b}{r['rtol']:.0e}{b} | {r['cpu']:.1f} | "
+            lines.append(f"| {b}{r['n_cells']}{b} | {b}{st}{b} | {b}{r['rtol']:.0e}{b} | "
+                         f"{r['cpu']:.1f} | "
                          f"{r['steps']} | {r['rhs']} | {r['jac']} | " +
                          " | ".join(fmt(r["err"][k]) for k in OUTCOMES) +
                          f" | {b}{fmt(r['err']['max'])}{b} |")
@@ -244,6 +254,8 @@ def main():
                     default=[32, 64, 128, 256, 512, 1024, 2048])
     ap.add_argument("--rtol", nargs="+", type=float,
                     default=[1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8])
+    ap.add_argument("--stretch", nargs="+", type=float, default=[0.0],
+                    help="grid.stretch values (0: log-spaced)")
     ap.add_argument("--ref-n", type=int, default=4096)
     ap.add_argument("--ref-rtol", type=float, default=1e-10)
     ap.add_argument("--ref2-n", type=int, help="second reference, to bound the first's error")
@@ -260,28 +272,31 @@ def main():
     exe = os.path.abspath(args.exe)
     sha = subprocess.run([exe, "--version"], capture_output=True, text=True).stdout.strip()
 
-    jobs = []  # (scene, n, rtol, timeout, role)
+    jobs = []  # (scene, n, rtol, timeout, role, stretch); the references log-spaced
     for scene in args.scenes:
-        jobs.append((scene, args.ref_n, args.ref_rtol, args.ref_timeout, "ref"))
+        jobs.append((scene, args.ref_n, args.ref_rtol, args.ref_timeout, "ref", 0.0))
         if args.ref2_n:
-            jobs.append((scene, args.ref2_n, args.ref2_rtol, args.ref_timeout, "ref2"))
-        for n in args.n_cells:
-            for rt in args.rtol:
-                if (n, rt) in ((args.ref_n, args.ref_rtol), (args.ref2_n, args.ref2_rtol)):
-                    continue
-                if n * rt ** -0.2 > args.max_cost:
-                    continue
-                jobs.append((scene, n, rt, args.timeout, "run"))
+            jobs.append((scene, args.ref2_n, args.ref2_rtol, args.ref_timeout, "ref2", 0.0))
+        for st in args.stretch:
+            for n in args.n_cells:
+                for rt in args.rtol:
+                    if st == 0.0 and (n, rt) in ((args.ref_n, args.ref_rtol),
+                                                 (args.ref2_n, args.ref2_rtol)):
+                        continue
+                    if n * rt ** -0.2 > args.max_cost:
+                        continue
+                    jobs.append((scene, n, rt, args.timeout, "run", st))
     print(f"{len(jobs)} runs, {args.jobs} at a time ({sha})", flush=True)
     recs = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         futs = {pool.submit(run_one, exe, args.workdir, s, n, rt, to, args.max_steps,
-                            args.fresh): role for s, n, rt, to, role in jobs}
+                            args.fresh, st): role for s, n, rt, to, role, st in jobs}
         for fut in concurrent.futures.as_completed(futs):
             r = fut.result()
             r["role"] = futs[fut]
             recs.append(r)
             print(f"[{len(recs)}/{len(jobs)}] {r['scene']:12s} N={r['n_cells']:5d} "
+                  f"stretch={r.get('stretch', 0.0):g} "
                   f"rtol={r['rtol']:.0e} {'ok ' if r.get('finished') else 'NOT'} "
                   f"{r['cpu']:8.1f} s cpu {r['wall']:8.1f} s wall {r.get('steps', '')} {r.get('error', '')}", flush=True)
 
@@ -314,11 +329,12 @@ def main():
         json.dump({"version": sha, "records": allrecs}, f, indent=1, default=str)
     with open(os.path.join(args.workdir, "work_precision.csv"), "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["scene", "role", "n_cells", "rtol", "finished", "cpu_s", "wall_s", "steps", "rhs",
+        w.writerow(["scene", "role", "n_cells", "stretch", "rtol", "finished", "cpu_s", "wall_s", "steps", "rhs",
                     "jac"] + [f"err_{k}" for k in OUTCOMES + ["max"]] + ["pareto"])
         for r in allrecs:
             e = r.get("err", {})
-            w.writerow([r["scene"], r["role"], r["n_cells"], r["rtol"], r.get("finished"),
+            w.writerow([r["scene"], r["role"], r["n_cells"], r.get("stretch", 0.0), r["rtol"],
+                        r.get("finished"),
                         f"{r['cpu']:.3f}", f"{r['wall']:.3f}", r.get("steps"), r.get("rhs"), r.get("jac")] +
                        [e.get(k, "") for k in OUTCOMES + ["max"]] + [r.get("pareto", "")])
     text = markdown(by_scene, refs, sha)

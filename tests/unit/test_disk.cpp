@@ -122,3 +122,33 @@ TEST(Grid, LogSpacedFacesAndCentres) {
   EXPECT_EQ(g.cell_of(1.0 * kAu), 0);
   EXPECT_EQ(g.cell_of(99.999 * kAu), 49);
 }
+
+TEST(Grid, StretchedSpacingFollowsPowerOfRadius) {
+  // stretch p: faces uniform in r^-p, so d ln r ∝ r^p. Worked by hand for 1-300 au, 250
+  // cells, p = 0.5: u = r^-1/2 runs from 1 to 0.057735 in steps of 0.0037691, and the
+  // first and last cells have dr/r = (1 - 0.0037691)^-2 - 1 = 0.0075810 and
+  // (0.057735 + 0.0037691)^2/0.057735^2 - 1 = 0.13483.
+  const Grid g(1.0 * kAu, 300.0 * kAu, 250, 0.5);
+  EXPECT_DOUBLE_EQ(g.r_f(0), 1.0 * kAu);
+  EXPECT_DOUBLE_EQ(g.r_f(250), 300.0 * kAu);
+  EXPECT_NEAR(std::expm1(g.dlnr(0)), 0.0075810, 1e-6);
+  EXPECT_NEAR(std::expm1(g.dlnr(249)), 0.13483, 1e-5);
+  const double du = (1.0 - 1.0 / std::sqrt(300.0)) / 250;
+  double area = 0.0;
+  for (int i = 0; i < g.n_cells(); ++i) {
+    const double u0 = std::pow(g.r_f(i) / kAu, -0.5),
+                 u1 = std::pow(g.r_f(i + 1) / kAu, -0.5);
+    EXPECT_NEAR(u0 - u1, du, 1e-12);
+    EXPECT_NEAR(g.r_c(i), std::sqrt(g.r_f(i) * g.r_f(i + 1)), 1e-12 * g.r_c(i));
+    EXPECT_NEAR(g.dlnr(i), std::log(g.r_f(i + 1) / g.r_f(i)), 1e-14);
+    if (i > 0) {
+      EXPECT_GT(g.dlnr(i), g.dlnr(i - 1));
+      EXPECT_NEAR(g.dlnr_centres(i), std::log(g.r_c(i) / g.r_c(i - 1)), 1e-14);
+    }
+    area += g.area(i);
+  }
+  EXPECT_NEAR(area, units::kPi * (300.0 * 300.0 - 1.0) * kAu * kAu, 1e-10 * area);
+  // a small stretch tends to the log-spaced grid
+  const Grid a(1.0 * kAu, 300.0 * kAu, 250, 1e-7), b(1.0 * kAu, 300.0 * kAu, 250);
+  for (int i = 0; i <= 250; ++i) EXPECT_NEAR(a.r_f(i) / b.r_f(i), 1.0, 1e-5);
+}
