@@ -9,8 +9,9 @@ namespace panoptic {
 
 std::vector<std::string> preset_overrides(const std::string& preset) {
   if (preset.empty()) return {};
-  if (preset == "fast") return {"grid.n_cells=128", "solver.rtol=1e-6"};
-  if (preset == "accurate") return {"grid.n_cells=1024", "solver.rtol=1e-8"};
+  // cell count and tolerance only: the scene keeps its cell spacing (grid.stretch)
+  if (preset == "fast") return {"grid.n_cells=250", "solver.rtol=1e-5"};
+  if (preset == "accurate") return {"grid.n_cells=1000", "solver.rtol=1e-6"};
   throw std::invalid_argument("unknown preset '" + preset + "' (fast, accurate)");
 }
 

@@ -40,7 +40,8 @@ them). A run still going after --timeout seconds or refused by the step budget i
 recorded as not finished. --max-cost skips runs whose N * rtol^(-1/5) exceeds it (a
 rough cost model of BDF: steps grow like rtol^(-1/order) and the work per step like N).
 --stretch adds grid.stretch values (cell spacing d ln r ∝ r^stretch; the references stay
-log-spaced)."""
+log-spaced). --existing-only tabulates the runs already in DIR out of the product of the
+lists given, and runs nothing new."""
 import argparse
 import concurrent.futures
 import csv
@@ -267,6 +268,8 @@ def main():
                     help="skip runs with N * rtol^(-1/5) above this")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--fresh", action="store_true", help="rerun even if outputs exist")
+    ap.add_argument("--existing-only", action="store_true",
+                    help="tabulate only the runs already in --workdir (run nothing new)")
     args = ap.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
     exe = os.path.abspath(args.exe)
@@ -284,6 +287,9 @@ def main():
                                                  (args.ref2_n, args.ref2_rtol)):
                         continue
                     if n * rt ** -0.2 > args.max_cost:
+                        continue
+                    if args.existing_only and not os.path.exists(os.path.join(
+                            args.workdir, tag(scene, n, rt, st) + ".h5.json")):
                         continue
                     jobs.append((scene, n, rt, args.timeout, "run", st))
     print(f"{len(jobs)} runs, {args.jobs} at a time ({sha})", flush=True)

@@ -8,19 +8,27 @@ from common import REPO, Checks, parse_args
 
 GOOD = open(os.path.join(REPO, "params/fiducial.toml")).read()
 
+
+def edit(old, new):
+    """The good scene with `old` replaced by `new`; `old` must be in it (else the case
+    would run the good scene and test nothing)."""
+    assert old in GOOD, f"{old!r} not in params/fiducial.toml: update this test"
+    return GOOD.replace(old, new)
+
+
 # (label, scene text or None for the good scene, extra CLI args, strings the message must hold)
 CASES = [
-    ("unknown key", GOOD.replace("n_cells = 250", "n_cell = 250"),
+    ("unknown key", edit("n_cells = 350", "n_cell = 350"),
      [], ["n_cell", ":", "grid.n_cells"]),
-    ("wrong type", GOOD.replace("n_cells = 250", 'n_cells = "many"'),
+    ("wrong type", edit("n_cells = 350", 'n_cells = "many"'),
      [], ["grid.n_cells", "many"]),
-    ("out of range", GOOD.replace("r_in_au = 1.0 ", "r_in_au = -1.0 "),
+    ("out of range", edit("r_in_au = 1.0 ", "r_in_au = -1.0 "),
      [], ["grid.r_in_au", "-1", "> 0"]),
-    ("inconsistent r_in >= r_out", GOOD.replace("r_in_au = 1.0 ", "r_in_au = 500.0 "),
+    ("inconsistent r_in >= r_out", edit("r_in_au = 1.0 ", "r_in_au = 500.0 "),
      [], ["grid.r_in_au", "500", "r_out"]),
-    ("unknown choice", GOOD.replace('model = "powerlaw"', 'model = "mmsn2"'),
+    ("unknown choice", edit('model = "powerlaw"', 'model = "mmsn2"'),
      [], ["disk.model", "mmsn2", "powerlaw", "lbp"]),
-    ("malformed TOML", GOOD.replace("[grid]", "[grid"),
+    ("malformed TOML", edit("[grid]", "[grid"),
      [], [":"]),
     ("binary garbage", "\x00\xff\xfe[[[\x01=\n", [], ["toml"]),
     ("bad --set key", None, ["--set", "grid.n_celz=10"], ["grid.n_celz", "--set"]),

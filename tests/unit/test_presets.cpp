@@ -27,14 +27,18 @@ TEST(Presets, ValidOnEveryPhysicsScene) {
 }
 
 TEST(Presets, OverrideTheSceneFile) {
-  // fiducial.toml sets grid.n_cells = 250 and solver.rtol = 1e-6 itself
+  // fiducial.toml sets grid.n_cells = 350 and solver.rtol = 1e-5 itself
   const Config fast = scene("fiducial", with_preset("fast", {}));
   const Config acc = scene("fiducial", with_preset("accurate", {}));
   const Config none = scene("fiducial", with_preset("", {}));
-  EXPECT_EQ(none.integer("grid.n_cells"), 250);
-  EXPECT_LT(fast.real("solver.rtol"), 1.0);
-  EXPECT_GT(fast.real("solver.rtol"), acc.real("solver.rtol"));
-  EXPECT_LE(fast.integer("grid.n_cells"), acc.integer("grid.n_cells"));
+  EXPECT_EQ(none.integer("grid.n_cells"), 350);
+  EXPECT_EQ(fast.integer("grid.n_cells"), 250);
+  EXPECT_EQ(acc.integer("grid.n_cells"), 1000);
+  EXPECT_DOUBLE_EQ(fast.real("solver.rtol"), 1e-5);
+  EXPECT_DOUBLE_EQ(acc.real("solver.rtol"), 1e-6);
+  // the scene's cell spacing is kept
+  EXPECT_DOUBLE_EQ(fast.real("grid.stretch"), 0.5);
+  EXPECT_DOUBLE_EQ(acc.real("grid.stretch"), 0.5);
 }
 
 TEST(Presets, ExplicitSetWins) {
