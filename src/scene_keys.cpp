@@ -268,7 +268,8 @@ std::vector<KeySpec> make_keys() {
               "pebble-flux samples (/timeseries) per snapshot interval", 1, 1e5),
 
       // [grid] spec §10.2
-      integer("grid.n_cells", "250", "number of radial cells (spacing: grid.stretch)", 4, 1e6),
+      integer("grid.n_cells", "250", "number of radial cells (spacing: grid.stretch)", 4,
+              1e6),
       positive("grid.r_in_au", "1.0", "au", "inner edge (open: outflow, booked)"),
       positive("grid.r_out_au", "300.0", "au", "outer edge (closed: zero flux)"),
       real("grid.stretch", "0.0", "",
