@@ -77,16 +77,18 @@ T root_p(const T& x, double p) {
 //! Evaluated as max * (1 + (min/max)^p)^(1/p) so that it cannot overflow; both
 //! branches are the same symmetric function, so the comparison introduces no jump in
 //! value or derivative.
+//! Where (min/max)^p < 1e-8 the root is taken as 1 + r^p/p, its Taylor series to
+//! O(r^2p) < 1e-16 (below round-off), which skips the p-th root: most calls compare
+//! quantities decades apart (the drag regime of a small grain, t_grow against the
+//! relaxation cap), and the root was the costliest part of the smooth switches.
 template <class T>
 T soft_max(const T& a, const T& b, double p = kSoftMaxPower) {
-  if (a >= b) {
-    const T r = b / a;
-    const T s = root_p<T>(1.0 + power_p<T>(r, p), p);
-    return a * s;
-  }
-  const T r = a / b;
-  const T s = root_p<T>(1.0 + power_p<T>(r, p), p);
-  return b * s;
+  const bool a_larger = a >= b;
+  const T& hi = a_larger ? a : b;
+  const T r = (a_larger ? b : a) / hi;
+  const T rp = power_p<T>(r, p);
+  if (value_of(rp) < 1e-8) return hi * (1.0 + rp / p);
+  return hi * root_p<T>(1.0 + rp, p);
 }
 
 //! Smooth minimum of two positive numbers, (a^-p + b^-p)^(-1/p) = a b / soft_max(a, b)
@@ -263,6 +265,10 @@ T stokes_number(const T& m, const T& phi, double rho0, const LocalGas& gas,
 
   const double p = kSoftMaxPower;
   const T x = knudsen_ratio(a, gas);
+  // A grain far inside the Epstein regime (x < 1e-3: g - 1 < x^8/8 = 1e-25 for any Re_p,
+  // since f_Re >= 1) has St = St_Ep to round-off: the Newton solve would return
+  // exp(ln St_Ep).
+  if (value_of(x) < 1e-3) return st_ep;
   const T ln_st_ep = log(st_ep);
   const T g0 = soft_max(T(1.0), x);
   T u = ln_st_ep + log(g0);  // Re_p = 0 (Stokes) first guess
