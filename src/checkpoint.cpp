@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
 #include "src/error.hpp"
 #include "src/h5.hpp"
 #include "src/units.hpp"

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
 #include "src/checkpoint.hpp"
 #include "src/config.hpp"
 #include "src/cvode_integrator.hpp"

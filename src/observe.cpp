@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 
+#include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
 #include "physics/mie.hpp"
 #include "physics/optical_constants.hpp"
 #include "src/config.hpp"
