@@ -19,7 +19,8 @@ Planetesimals::Planetesimals(StateLayout& layout, const ParticleCodec& codec,
       opt_(options) {
   // Sigma_pl only books what the channels convert (nothing reads it back), so its
   // absolute tolerance need only resolve the /summary threshold of a formed cell (1e-6
-  // of the largest initial Sigma_d): atol = 1e-8 of it, 1e4 x that of Sigma_d. With
+  // of the largest initial Sigma_d): atol = 1e-8 of the largest initial Sigma_d (1% of
+  // the threshold), 1e4 x the atol of Sigma_d. With
   // Sigma_d's atol the onset of conversion in each cell was resolved to 1e-11 g cm^-2
   // and cost 15% of the fiducial run's steps (issue 7 note); the outcomes moved by
   // < 3e-4 relative.
