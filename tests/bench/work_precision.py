@@ -66,6 +66,15 @@ def tag(scene, n, rtol, stretch=0.0):
     return f"{scene}_N{n}_rtol{rtol:.0e}" + (f"_s{stretch:g}" if stretch else "")
 
 
+def error_line(stderr):
+    """The error message of a failed run: its "panoptic: error:" line (the failure
+    report that follows lists cells), else the last line."""
+    lines = stderr.strip().splitlines()
+    err = [ln.removeprefix("panoptic: error: ") for ln in lines
+           if ln.startswith("panoptic: error: ")]
+    return (err[0] if err else (lines[-1] if lines else ""))[:200]
+
+
 def run_one(exe, workdir, scene, n, rtol, timeout, max_steps, fresh, stretch=0.0):
     """Runs one (scene, N, rtol, grid stretch) unless a finished output is there; returns
     its record."""
@@ -82,6 +91,10 @@ def run_one(exe, workdir, scene, n, rtol, timeout, max_steps, fresh, stretch=0.0
             old = json.load(f)
         if old.get("cmd") == rec["cmd"] and (old.get("finished") or
                                              old.get("timeout", 0) >= timeout):
+            if not old.get("finished") and "timeout" not in old and \
+                    os.path.exists(out + ".stderr"):
+                with open(out + ".stderr") as f:
+                    old["error"] = error_line(f.read())
             return old
     t0 = time.monotonic()
     err_path = out + ".stderr"
@@ -104,7 +117,7 @@ def run_one(exe, workdir, scene, n, rtol, timeout, max_steps, fresh, stretch=0.0
     if rec["wall"] > timeout:
         rec.update(timeout=timeout, error=f"still running after {timeout:.0f} s")
     elif not rec["finished"]:
-        rec["error"] = (stderr.strip().splitlines() or [""])[-1][:300]
+        rec["error"] = error_line(stderr)
     if rec["finished"]:
         run = load_run(out)
         rec.update(steps=int(run.solver["nst"]), rhs=int(run.solver["nfe"]),
