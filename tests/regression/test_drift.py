@@ -16,6 +16,20 @@ AU = 1.496e13
 YR = 3.156e7
 
 
+def steady_deviation(r, r_max):
+    """Largest |Sigma_d(t_end)/Sigma_d(0) - 1| over the cells inside r_max [au]."""
+    inside = r.r_c < r_max
+    sig0, sig1 = r.snapshots["sigma_d"][0], r.snapshots["sigma_d"][-1]
+    return np.max(np.abs(sig1[inside] / sig0[inside] - 1))
+
+
+def inflow(r, vr):
+    """Mass flow through r_in at t_end and its steady value 2 pi r Sigma_d |v_r| (the
+    same at every r for Sigma_d ∝ 1/r: taken at cell 0) [g/s]."""
+    exact = 2 * np.pi * (r.r_c[0] * AU) * r.snapshots["sigma_d"][0][0] * abs(vr)
+    return -r.snapshots["mdot_d"][-1][0], exact
+
+
 def main():
     args = parse_args()
     c = Checks()
@@ -33,13 +47,9 @@ def main():
     # front radius.
     front = r.r_f[-1] * AU - abs(vr) * t_end
     reach = 0.4 * front / AU
-    inside = r.r_c < reach
-    sig0, sig1 = r.snapshots["sigma_d"][0], r.snapshots["sigma_d"][-1]
-    dev = np.max(np.abs(sig1[inside] / sig0[inside] - 1))
+    dev = steady_deviation(r, reach)
     c.check(dev < 1e-6, f"Sigma_d steady to {dev:.1e} inside r < {reach:.0f} au after {r.time[-1]:.0f} yr")
-    mdot_in = -r.snapshots["mdot_d"][-1][0]
-    # 2 pi r Sigma_d |v| is the same at every r for Sigma_d ∝ 1/r: take it at cell 0
-    exact = 2 * np.pi * (r.r_c[0] * AU) * r.snapshots["sigma_d"][0][0] * abs(vr)
+    mdot_in, exact = inflow(r, vr)
     rel = abs(mdot_in / exact - 1)
     print(f"mass flow through r_in {mdot_in:.6e} g/s, analytic {exact:.6e} g/s, rel. diff {rel:.2e}")
     c.check(rel < 1e-6, "pebble flux through r_in equals 2 pi r Sigma v (steady state exact)")
@@ -53,12 +63,10 @@ def main():
     out = f"{args.workdir}/steady_s0.5.h5"
     run(args.exe, "params/tests/drift.toml", out, ["output.t_end_yr=2e4", "grid.stretch=0.5"])
     r = load_run(out)
-    inside_s = r.r_c < 10.0
-    sig0, sig1 = r.snapshots["sigma_d"][0], r.snapshots["sigma_d"][-1]
-    dev = np.max(np.abs(sig1[inside_s] / sig0[inside_s] - 1))
+    dev = steady_deviation(r, 10.0)
     c.check(dev < 1e-8, f"stretch 0.5: Sigma_d steady to {dev:.1e} inside r < 10 au")
-    exact = 2 * np.pi * (r.r_c[0] * AU) * r.snapshots["sigma_d"][0][0] * abs(vr)
-    rel = abs(-r.snapshots["mdot_d"][-1][0] / exact - 1)
+    mdot_in, exact = inflow(r, vr)
+    rel = abs(mdot_in / exact - 1)
     c.check(rel < 1e-6, f"stretch 0.5: flux through r_in exact (rel. diff {rel:.1e})")
 
     # 2. drifting ring, first-order convergence of its centre-of-mass speed, on the
@@ -98,11 +106,9 @@ def main():
     out = f"{args.workdir}/steady_vl.h5"
     run(args.exe, "params/tests/drift.toml", out, ["output.t_end_yr=2e4"] + vl)
     r = load_run(out)
-    sig0, sig1 = r.snapshots["sigma_d"][0], r.snapshots["sigma_d"][-1]
-    dev = np.max(np.abs(sig1[inside] / sig0[inside] - 1))
+    dev = steady_deviation(r, reach)
     c.check(dev < 1e-6, f"van Leer: Sigma_d steady to {dev:.1e} inside r < {reach:.0f} au")
-    mdot_in = -r.snapshots["mdot_d"][-1][0]
-    exact = 2 * np.pi * (r.r_c[0] * AU) * r.snapshots["sigma_d"][0][0] * abs(vr)
+    mdot_in, exact = inflow(r, vr)
     rel = abs(mdot_in / exact - 1)
     c.check(rel < 1e-6, f"van Leer: flux through r_in exact (rel. diff {rel:.1e})")
     errs_vl, l1_vl, l1_up = [], [], []
