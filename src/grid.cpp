@@ -25,6 +25,8 @@ Grid::Grid(double r_in, double r_out, int n, double stretch)
     r_c_[i] = std::sqrt(r_f_[i] * r_f_[i + 1]);
     area_[i] = units::kPi * (r_f_[i + 1] * r_f_[i + 1] - r_f_[i] * r_f_[i]);
   }
+  dlnr_c_.assign(n, 0.0);
+  for (int i = 1; i < n; ++i) dlnr_c_[i] = std::log(r_c_[i] / r_c_[i - 1]);
 }
 
 int Grid::cell_of(double r) const {

@@ -5,7 +5,6 @@
 //! where growth fronts are narrowest. The centre of cell i is the geometric mean of its
 //! faces; on the log-spaced grid every face is also the geometric mean of its two
 //! neighbouring centres (face interpolation of power laws is then exact).
-#include <cmath>
 #include <vector>
 
 namespace panoptic {
@@ -26,7 +25,7 @@ class Grid {
   }  //!< ln(r_f(i+1)/r_f(i)), the log width of cell i
   //! ln(r_c(i)/r_c(i-1)), the log distance between the centres either side of face i
   //! (i >= 1)
-  double dlnr_centres(int i) const { return std::log(r_c_[i] / r_c_[i - 1]); }
+  double dlnr_centres(int i) const { return dlnr_c_[i]; }
   double stretch() const { return stretch_; }
   const std::vector<double>& centres() const { return r_c_; }
   const std::vector<double>& faces() const { return r_f_; }
@@ -38,6 +37,7 @@ class Grid {
   int n_;
   double stretch_;
   std::vector<double> r_c_, r_f_, area_, dlnr_;
+  std::vector<double> dlnr_c_;  // [i] = ln(r_c(i)/r_c(i-1)), i >= 1; [0] unused
 };
 
 }  // namespace panoptic
