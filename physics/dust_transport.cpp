@@ -143,7 +143,7 @@ int DustTransport::face_flows(int f, const T* ya, const T* yb, std::span<const d
   // the speed of its own St (flux-vector splitting, v_a^+ q_a + v_b^- q_b): fiducial
   // planetesimal mass nearer the fine-grid value on 250 cells (12.9 vs 13.4 M_earth,
   // 11.6-11.7 on 1000 cells) but 50% more steps and stronger travelling waves at the
-  // growth front (README, "Grid resolution"); not kept.
+  // growth front (README, "Performance"); not kept.
   const T st =
       f > 0 ? T(sqrt(stokes_.St(f - 1, ya) * stokes_.St(f, yb))) : stokes_.St(0, ya);
   const T v = opt_.drift ? velocity(f, ya, yb, st) : T(0.0);
