@@ -6,7 +6,8 @@
 // operations). Usage: build/tests/bench_fiducial [--runs R] [--trace K] [--set key=value
 // ...]
 //   --trace K: every K-th step, print t, h, order and the components with the largest
-//              weighted local error (which variables limit the step).
+//              weighted local error (which variables limit the step), then the physical
+//              state of the cell of the largest (after "||").
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -47,6 +48,10 @@ Result run_once(const Config& cfg, long trace_every) {
                   t / units::kYr, nst, info.h / units::kYr, info.order);
       for (const auto& [i, e] : info.largest_errors)
         std::printf("  %s (%.2f)", sim.model().layout().describe(i).c_str(), e);
+      if (!info.largest_errors.empty())  // the physical state where the step is limited
+        std::printf(
+            "  || %s",
+            sim.model().describe(info.largest_errors[0].first, cvode.state()).c_str());
       std::printf("\n");
     });
     if (reinit) {

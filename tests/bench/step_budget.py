@@ -14,7 +14,9 @@ Measured, each with the scene's snapshot schedule (CVODE restarts at every snaps
   restart cost       extra steps per CVODE restart of one cell (n_snapshots 41 -> 401),
                      what such a scheme pays each time transport hands a cell a new state
 
-and the coupled run's steps by decade of time (--trace 1).
+and the coupled run's steps by decade of time (--trace 1): how many, which variable limits
+them, and how many are limited by a drained cell (Sigma_d below 1e-6 of the largest
+Sigma_d met), whose dust no outcome can see.
 
     /usr/bin/python3 tests/bench/step_budget.py [--exe build/tests/bench_fiducial]
         [--every K] [--set key=value ...]
@@ -30,7 +32,8 @@ import tomllib
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 ROW = re.compile(r"^\| ([0-9.]+) \| (\d+) \| (\d+) \| (\d+) \|")
-TRACE = re.compile(r"^t = (\S+) yr  step \d+ .*limited by:\s+(\w+) in cell (\d+)")
+TRACE = re.compile(r"^t = (\S+) yr  step \d+ .*limited by:\s+(\w+) in cell (\d+).*"
+                   r"\|\| .*Sigma_d = (\S+) g")
 
 
 def bench(exe, sets, trace=False):
@@ -41,8 +44,8 @@ def bench(exe, sets, trace=False):
         cmd += ["--set", s]
     out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
     row = next(m for m in map(ROW.match, out.splitlines()) if m)
-    steps = [(float(m.group(1)), m.group(2)) for m in map(TRACE.match, out.splitlines())
-             if m] if trace else None
+    steps = [(float(m.group(1)), m.group(2), float(m.group(4)))
+             for m in map(TRACE.match, out.splitlines()) if m] if trace else None
     return float(row.group(1)), int(row.group(2)), int(row.group(3)), int(row.group(4)), \
         steps
 
@@ -112,18 +115,25 @@ def main():
           f"{own_sum / (steps * n):.3f} |")
     print(f"\nrestart cost of one cell at r = {mid:.3g} au: {per_restart:.1f} steps per "
           f"CVODE restart ({restart[0]} steps with 41 snapshots, {restart[1]} with 401)")
+    # a drained cell: Sigma_d below 1e-6 of the largest Sigma_d met in the trace
+    drained = 1e-6 * max(sd for _, _, sd in trace)
     by_decade = collections.Counter()
+    by_drained = collections.Counter()
     by_var = collections.defaultdict(collections.Counter)
-    for t, var in trace:
+    for t, var, sd in trace:
         d = math.floor(math.log10(max(t, 1e-3)))
         by_decade[d] += 1
+        by_drained[d] += sd < drained
         by_var[d][var] += 1
-    print("\n| t [yr] | steps | share | limited most by |\n|---|---|---|---|")
+    print("\n| t [yr] | steps | share | limited most by | limited by a drained cell |\n"
+          "|---|---|---|---|---|")
     for d in sorted(by_decade):
         top = ", ".join(f"{v} {c}" for v, c in by_var[d].most_common(2))
         lo = "0" if d <= -3 else f"1e{d}"
         print(f"| {lo}..1e{d + 1} | {by_decade[d]} | "
-              f"{100 * by_decade[d] / len(trace):.0f} % | {top} |")
+              f"{100 * by_decade[d] / len(trace):.0f} % | {top} | {by_drained[d]} |")
+    print(f"\n{sum(by_drained.values())} steps limited by a drained cell (Sigma_d < "
+          f"{drained:.2g} g cm^-2, 1e-6 of the largest Sigma_d in the trace)")
 
 
 if __name__ == "__main__":
