@@ -5,7 +5,8 @@
 //! nothing.
 //!
 //! NEW_PROCESS: derive from PhysicsModule, register its variables with the StateLayout in
-//! its constructor, and create it in src/model_factory.cpp when the scene turns it on.
+//! its constructor, and build it in Simulation (src/simulation.cpp) when the scene turns
+//! it on (README "Adding a physical process").
 #include <span>
 #include <string_view>
 
