@@ -34,8 +34,9 @@ error bounds how far the reference itself can be trusted.
 
 writes DIR/work_precision.json (every run: settings, costs, errors, command),
 DIR/work_precision.csv, DIR/work_precision_<scene>.png (error against CPU time, one
-panel per outcome) and DIR/work_precision.md (a table per scene, Pareto-optimal runs in
-bold). Finished outputs in DIR are reused (delete DIR to measure afresh; --fresh ignores
+panel per outcome), DIR/work_precision.md (a table per scene, Pareto-optimal runs in
+bold) and DIR/work_precision_summary.md (per scene: every grid at --summary-rtol, every
+rtol on --summary-grid N:stretch, and the Pareto front). Finished outputs in DIR are reused (delete DIR to measure afresh; --fresh ignores
 them). A run still going after --timeout seconds or refused by the step budget is
 recorded as not finished. --max-cost skips runs whose N * rtol^(-1/5) exceeds it (a
 rough cost model of BDF: steps grow like rtol^(-1/order) and the work per step like N).
@@ -229,33 +230,55 @@ def fmt(x):
     return "–" if x is None or not np.isfinite(x) else f"{x:.1e}"
 
 
+def table(recs):
+    """Markdown rows of `recs` (sorted by stretch, N, falling rtol); Pareto runs in bold."""
+    lines = ["| N | stretch | rtol | CPU [s] | steps | RHS | Jac | " + " | ".join(OUTCOMES) +
+             " | max |", "|---|---|---|---|---|---|---|" + "---|" * (len(OUTCOMES) + 1)]
+    for r in sorted(recs, key=lambda r: (r.get("stretch", 0.0), r["n_cells"], -r["rtol"])):
+        st = f"{r.get('stretch', 0.0):g}"
+        if not r.get("finished"):
+            lines.append(f"| {r['n_cells']} | {st} | {r['rtol']:.0e} | > {r['wall']:.0f} | "
+                         f"not finished: {r.get('error', '')} |" + " |" * (len(OUTCOMES) + 3))
+            continue
+        b = "**" if r.get("pareto") else ""
+        lines.append(f"| {b}{r['n_cells']}{b} | {b}{st}{b} | {b}{r['rtol']:.0e}{b} | "
+                     f"{r['cpu']:.1f} | {r['steps']} | {r['rhs']} | {r['jac']} | " +
+                     " | ".join(fmt(r["err"][k]) for k in OUTCOMES) +
+                     f" | {b}{fmt(r['err']['max'])}{b} |")
+    return lines
+
+
+def ref_line(scene, ref):
+    return (f"**{scene}** (reference: N = {ref['n_cells']}, rtol = {ref['rtol']:.0e}, "
+            f"{ref['cpu']:.0f} s, {ref['steps']} steps"
+            + (f"; its own error against N = {ref['ref2']['n_cells']}, rtol = "
+               f"{ref['ref2']['rtol']:.0e}: max {fmt(ref['ref2']['err']['max'])}"
+               f" ({', '.join(f'{k} {fmt(v)}' for k, v in ref['ref2']['err'].items() if k != 'max')})"
+               if ref.get("ref2") else "") + ")\n")
+
+
 def markdown(by_scene, refs, sha):
     lines = [f"Measured at commit {sha}. Errors relative to the reference; "
              "Costs are CPU seconds (one core). Pareto-optimal (CPU time, max error) runs in bold.\n"]
     for scene, recs in by_scene.items():
-        ref = refs[scene]
-        lines.append(f"**{scene}** (reference: N = {ref['n_cells']}, rtol = "
-                     f"{ref['rtol']:.0e}, {ref['cpu']:.0f} s, {ref['steps']} steps"
-                     + (f"; its own error against N = {ref['ref2']['n_cells']}, rtol = "
-                        f"{ref['ref2']['rtol']:.0e}: max {fmt(ref['ref2']['err']['max'])}"
-                        f" ({', '.join(f'{k} {fmt(v)}' for k, v in ref['ref2']['err'].items() if k != 'max')})"
-                        if ref.get("ref2") else "") + ")\n")
-        lines.append("| N | stretch | rtol | CPU [s] | steps | RHS | Jac | " +
-                     " | ".join(OUTCOMES) + " | max |")
-        lines.append("|---|---|---|---|---|---|---|" + "---|" * (len(OUTCOMES) + 1))
-        for r in sorted(recs, key=lambda r: (r.get("stretch", 0.0), r["n_cells"], -r["rtol"])):
-            st = f"{r.get('stretch', 0.0):g}"
-            if not r.get("finished"):
-                lines.append(f"| {r['n_cells']} | {st} | {r['rtol']:.0e} | > {r['wall']:.0f} | "
-                             f"not finished: {r.get('error', '')} |" + " |" * (len(OUTCOMES) + 3))
-                continue
-            b = "**" if r.get("pareto") else ""
-            lines.append(f"| {b}{r['n_cells']}{b} | {b}{st}{b} | {b}{r['rtol']:.0e}{b} | "
-                         f"{r['cpu']:.1f} | "
-                         f"{r['steps']} | {r['rhs']} | {r['jac']} | " +
-                         " | ".join(fmt(r["err"][k]) for k in OUTCOMES) +
-                         f" | {b}{fmt(r['err']['max'])}{b} |")
-        lines.append("")
+        lines += [ref_line(scene, refs[scene])] + table(recs) + [""]
+    return "\n".join(lines)
+
+
+def summary_markdown(by_scene, refs, sha, rtol, grid):
+    """The condensed view: every grid at one rtol, every rtol on one grid (N, stretch),
+    and the Pareto front, per scene."""
+    n, st = grid
+    lines = [f"Measured at commit {sha}. Errors relative to the reference; costs are CPU "
+             "seconds (one core); bold: on the Pareto front of (CPU time, max error) among "
+             "all runs of the scene.\n"]
+    for scene, recs in by_scene.items():
+        lines += [ref_line(scene, refs[scene]), f"Every grid at rtol = {rtol:.0e}:\n"]
+        lines += table([r for r in recs if r["rtol"] == rtol]) + [""]
+        lines += [f"Every rtol at N = {n}, stretch {st:g}:\n"]
+        lines += table([r for r in recs if r["n_cells"] == n and
+                        r.get("stretch", 0.0) == st]) + [""]
+        lines += ["The Pareto front:\n"] + table([r for r in recs if r.get("pareto")]) + [""]
     return "\n".join(lines)
 
 
@@ -283,6 +306,10 @@ def main():
     ap.add_argument("--fresh", action="store_true", help="rerun even if outputs exist")
     ap.add_argument("--existing-only", action="store_true",
                     help="tabulate only the runs already in --workdir (run nothing new)")
+    ap.add_argument("--summary-rtol", type=float, default=1e-5,
+                    help="work_precision_summary.md: every grid at this rtol")
+    ap.add_argument("--summary-grid", default="350:0.5",
+                    help="work_precision_summary.md: every rtol on this grid, N:stretch")
     args = ap.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
     exe = os.path.abspath(args.exe)
@@ -359,6 +386,10 @@ def main():
     text = markdown(by_scene, refs, sha)
     with open(os.path.join(args.workdir, "work_precision.md"), "w") as f:
         f.write(text)
+    n, _, st = args.summary_grid.partition(":")
+    with open(os.path.join(args.workdir, "work_precision_summary.md"), "w") as f:
+        f.write(summary_markdown(by_scene, refs, sha, args.summary_rtol,
+                                 (int(n), float(st or 0.0))))
     print(text)
 
 
