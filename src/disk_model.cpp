@@ -32,14 +32,16 @@ DiskModel::DiskModel(std::shared_ptr<const StateLayout> layout,
 
 void DiskModel::rhs(double t, std::span<const double> y, std::span<double> ydot) const {
   std::fill(ydot.begin(), ydot.end(), 0.0);
-  for (const auto& m : modules_) m->add_rhs(t, y, ydot);
+  for (const auto& m : modules_)
+    if (!active_ || active_(m->name())) m->add_rhs(t, y, ydot);
 }
 
 void DiskModel::jacobian(double t, std::span<const double> y,
                          std::span<double> values) const {
   std::fill(values.begin(), values.end(), 0.0);
   JacobianValues jac(pattern_, values);
-  for (const auto& m : modules_) m->add_jacobian(t, y, jac);
+  for (const auto& m : modules_)
+    if (!active_ || active_(m->name())) m->add_jacobian(t, y, jac);
 }
 
 std::string DiskModel::describe(long index, std::span<const double> y) const noexcept {

@@ -5,6 +5,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "src/physics_module.hpp"
@@ -21,6 +22,13 @@ class DiskModel {
   const StateLayout& layout() const { return *layout_; }
   const SparsityPattern& pattern() const { return pattern_; }
   const std::vector<std::unique_ptr<PhysicsModule>>& modules() const { return modules_; }
+
+  //! Sum only the modules whose name() passes `active` (null: all, the default) in rhs()
+  //! and jacobian(); the pattern stays that of all modules. For operator-splitting
+  //! studies (tests/bench/bench_split.cpp), which integrate the processes apart.
+  void set_active(std::function<bool(std::string_view)> active) {
+    active_ = std::move(active);
+  }
 
   //! ydot = F(t, y). Throws on programming errors.
   void rhs(double t, std::span<const double> y, std::span<double> ydot) const;
@@ -49,6 +57,7 @@ class DiskModel {
   SparsityPattern pattern_;
   std::string last_error_;
   Describer describer_;
+  std::function<bool(std::string_view)> active_;
 };
 
 }  // namespace panoptic
