@@ -63,8 +63,15 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
   if (t_start > 0.0) {  // restart: keep what was sampled up to the checkpoint
     h5::Handle g = h5::open_group(out_.file(), "timeseries");
     const auto times = h5::read_doubles(g.get(), "time");
+    // The rows sampled up to the checkpoint: times rise (sample times are > 0 and one
+    // row per CVODE step at most). Stop at the first row that does not rise as well as
+    // at the first after t_start: a run killed while it cut the file (SIGKILL during an
+    // earlier restart) can leave rows read back as the fill value 0 after the valid
+    // ones, and those must not be kept (regression.test_restart_bitwise).
     hsize_t keep = 0;
-    while (keep < times.size() && times[keep] * kYr <= t_start) ++keep;
+    while (keep < times.size() && times[keep] * kYr <= t_start &&
+           (keep == 0 ? times[0] > 0.0 : times[keep] >= times[keep - 1]))
+      ++keep;
     h5::truncate_stack(g.get(), "time", keep);  // time first: rows need a time
     for (const char* name : {"pebble_flux", "m_through", "mass_budget"})
       h5::truncate_stack(g.get(), name, keep);

@@ -6,6 +6,7 @@ The checkpoints are those at the end of shorter runs of the same scene (output.t
 cut after snapshot j, so output.t_end_yr = its last time: a compatible change), restarted
 with the full list; plus the mid-run .chk.prev.h5 of the default log-spaced scene, and a
 scene with an evolving gas disk (another layout: sigma_d, sigma_g per cell)."""
+import h5py
 import numpy as np
 
 from common import Checks, parse_args
@@ -13,6 +14,7 @@ from restart_common import (checkpoint_attrs, checkpoint_of, copy_run, h5diff_sn
                             panoptic, previous_of, rows, snapshot_differences,
                             solver_attrs)
 
+YR = 3.156e7  # s, src/units.hpp
 SCENE = "params/tests/restart.toml"  # transport alone: short runs
 FIDUCIAL = "params/fiducial.toml"
 BASE = []
@@ -75,6 +77,26 @@ def main():
     c.check(not diffs and rows(again) == rows(full),
             f"log-spaced scene restarted from .chk.prev.h5 (snapshot {k}): /snapshots, "
             f"/timeseries, /summary identical, {rows(again)} snapshots "
+            f"{diffs if diffs else ''}")
+
+    # A restart killed while it cut the file (SIGKILL, test_restart_killed) can leave the
+    # /timeseries rows after its checkpoint read back as zeros, the fill value. The next
+    # restart from that checkpoint must drop them with the rest, not keep them as samples.
+    debris = f"{w}/debris.h5"
+    copy_run(full, debris, files=("output", "prev"))
+    t_k = checkpoint_attrs(previous_of(debris))["t"] / YR
+    with h5py.File(debris, "r+") as f:
+        g = f["timeseries"]
+        first = int(np.searchsorted(g["time"][:], t_k, side="right"))  # rows rise in t
+        for name in g:
+            g[name][first:] = np.zeros((g[name].shape[0] - first,) + g[name].shape[1:])
+        n_zero = g["time"].shape[0] - first
+    panoptic(args.exe, SCENE, "--restart", previous_of(debris), "-o", debris,
+             sets=BASE + ["checkpoint.every_snapshots=7"])
+    diffs = snapshot_differences(full, debris, MID_RUN_GROUPS)
+    c.check(n_zero > 0 and not diffs,
+            f"restart over {n_zero} zeroed /timeseries rows after the checkpoint "
+            f"(snapshot {k}): /snapshots, /timeseries, /summary identical "
             f"{diffs if diffs else ''}")
 
     # Evolving gas: two variables per cell and one more booked mass.
