@@ -199,14 +199,31 @@ def _truncate_to_common_length(snapshots, path, group="snapshots", stacklevel=3)
 
 
 def _read_timeseries(f, path):
-    """/timeseries cut to a common length; {} (with a warning) if it has no time."""
+    """/timeseries cut to a common length, without rows that do not rise in time; {} (with
+    a warning) if it has no time."""
     series = _read_group(f, "timeseries")
     if not series:
         return {}
     if "time" not in series:
         warnings.warn(f"{path}: /timeseries has no time dataset; ignored", stacklevel=3)
         return {}
-    return _truncate_to_common_length(series, path, group="timeseries", stacklevel=4)
+    series = _truncate_to_common_length(series, path, group="timeseries", stacklevel=4)
+    return _cut_to_rising_time(series, path)
+
+
+def _cut_to_rising_time(series, path):
+    """The rows of /timeseries whose time is above 0 and at least every time before it.
+    The writer samples at rising times, one row per solver step at most; a run killed
+    while a restart cut the file can leave rows read back as zeros (HDF5's fill value),
+    which are not samples and are dropped (warned); the rows after them are kept."""
+    t = series["time"]
+    before = np.concatenate([[-np.inf], np.maximum.accumulate(t)[:-1]])
+    keep = (t > 0.0) & (t >= before)
+    if keep.all():
+        return series
+    warnings.warn(f"{path}: {int((~keep).sum())} /timeseries rows do not rise in time (left "
+                  f"by a run killed while a restart cut the file?); dropped", stacklevel=4)
+    return {name: a[keep] for name, a in series.items()}
 
 
 def _monitor_names(f, r_au, path):

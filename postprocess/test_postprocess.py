@@ -297,6 +297,30 @@ def check_reader_timeseries_killed(tmp):
     return f"reader: killed run, /timeseries cut to its {ns} time rows (warned), no /summary"
 
 
+def check_reader_timeseries_zero_rows(tmp):
+    # rows read back as zeros amid the valid ones: what a run killed while a restart cut
+    # the file leaves behind (src/diagnostics.cpp drops them on the next restart; files
+    # restarted before that fix have them between valid rows)
+    path = os.path.join(tmp, "zero_rows.h5")
+    _, diag = write_full_run(path)
+    ns = len(diag["series"]["time"])
+    lo, hi = ns - 12, ns - 5
+    with h5py.File(path, "a") as f:
+        for name, ds in f["timeseries"].items():
+            ds[lo:hi] = np.zeros((hi - lo,) + ds.shape[1:])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run = reader.load_run(path)
+    kept = np.r_[0:lo, hi:ns]
+    assert all(a.shape[0] == ns - (hi - lo) for a in run.timeseries.values()), ns
+    assert np.array_equal(run.timeseries["m_through"], diag["series"]["m_through"][kept])
+    assert np.array_equal(run.timeseries["time"], diag["series"]["time"][kept])
+    messages = [str(w.message) for w in caught]
+    assert any("7 /timeseries rows do not rise in time" in m for m in messages), messages
+    return (f"reader: /timeseries with {hi - lo} zeroed rows amid {ns} drops exactly those "
+            f"(warned)")
+
+
 def check_reader_monitor_names(tmp):
     path = os.path.join(tmp, "bad_names.h5")
     write_full_run(path, names="snow line;r_in")      # 2 names for 5 radii
@@ -517,7 +541,8 @@ def _is_png(path):
 
 
 CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
-          check_reader_groups_absent, check_reader_timeseries_killed, check_reader_monitor_names,
+          check_reader_groups_absent, check_reader_timeseries_killed,
+          check_reader_timeseries_zero_rows, check_reader_monitor_names,
           check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
           check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full,
