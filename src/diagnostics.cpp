@@ -75,6 +75,8 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
     h5::truncate_stack(g.get(), "time", keep);  // time first: rows need a time
     for (const char* name : {"pebble_flux", "m_through", "mass_budget"})
       h5::truncate_stack(g.get(), name, keep);
+    out_.flush();  // the cut on disk now, not at the first snapshot: a shorter window
+                   // in which a kill leaves the file half cut
     while (next_sample_ < sample_times_.size() && sample_times_[next_sample_] <= t_start)
       ++next_sample_;
     if (sim.planetesimals()) {
