@@ -67,14 +67,25 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
     // row per CVODE step at most). Stop at the first row that does not rise as well as
     // at the first after t_start: a run killed while it cut the file (SIGKILL during an
     // earlier restart) can leave rows read back as the fill value 0 after the valid
-    // ones, and those must not be kept (regression.test_restart_bitwise).
+    // ones, and those must not be kept (regression.test_restart_bitwise). Rows whose
+    // chunk is gone (a writer killed while HDF5 flushed its chunk index) are passed over
+    // here and written as NaN below.
+    std::vector<char> gone(times.size(), 0);
+    for (const auto& [first, last] : h5::unallocated_rows(g.get(), "time", times.size()))
+      std::fill(gone.begin() + static_cast<long>(first),
+                gone.begin() + static_cast<long>(last), 1);
     hsize_t keep = 0;
-    while (keep < times.size() && times[keep] * kYr <= t_start &&
-           (keep == 0 ? times[0] > 0.0 : times[keep] >= times[keep - 1]))
-      ++keep;
+    double previous = 0.0;
+    for (hsize_t i = 0; i < times.size(); ++i) {
+      if (gone[i]) continue;
+      if (!(times[i] > 0.0 && times[i] >= previous && times[i] * kYr <= t_start)) break;
+      previous = times[i];
+      keep = i + 1;
+    }
     h5::truncate_stack(g.get(), "time", keep);  // time first: rows need a time
     for (const char* name : {"pebble_flux", "m_through", "mass_budget"})
       h5::truncate_stack(g.get(), name, keep);
+    lost_ = mark_lost_rows(out_.file(), "timeseries", keep);
     out_.flush();  // the cut on disk now, not at the first snapshot: a shorter window
                    // in which a kill leaves the file half cut
     while (next_sample_ < sample_times_.size() && sample_times_[next_sample_] <= t_start)

@@ -32,6 +32,9 @@ class RunDiagnostics {
   void add_snapshot_fields(std::map<std::string, std::vector<double>>& fields) const;
   //! Writes /summary and returns it as text for the terminal.
   std::string finish(double t, std::span<const double> y);
+  //! After a restart: the kept /timeseries rows the file had lost (mark_lost_rows), now
+  //! NaN; "" when none.
+  const std::string& lost_rows() const { return lost_; }
 
  private:
   void sample(double t, std::span<const double> y);
@@ -40,6 +43,7 @@ class RunDiagnostics {
   RunOutput& out_;
   std::vector<double> sample_times_;  //!< [s]
   std::size_t next_sample_ = 0;
+  std::string lost_;
   std::vector<std::vector<double>> rows_time_, rows_flux_, rows_mass_, rows_budget_;
   std::vector<double> t_first_;    //!< per cell, first planetesimal formation [s]
   std::vector<double> threshold_;  //!< per cell: Sigma_pl that counts as formed

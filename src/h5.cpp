@@ -1,6 +1,8 @@
 #include "src/h5.hpp"
 
+#include <algorithm>
 #include <array>
+#include <limits>
 
 #include "src/error.hpp"
 
@@ -140,6 +142,56 @@ void truncate_stack(hid_t parent, const std::string& name, hsize_t rows) {
   if (dims[0] == rows) return;
   dims[0] = rows;
   ok(H5Dset_extent(ds.get(), dims.data()), "truncating", name);
+}
+
+std::vector<std::pair<hsize_t, hsize_t>> unallocated_rows(hid_t parent,
+                                                          const std::string& name,
+                                                          hsize_t rows) {
+  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
+            H5Dclose);
+  Handle dcpl(ok(H5Dget_create_plist(ds.get()), "creation properties of " + name),
+              H5Pclose);
+  std::vector<std::pair<hsize_t, hsize_t>> lost;
+  if (H5Pget_layout(dcpl.get()) != H5D_CHUNKED) return lost;
+  std::array<hsize_t, 2> chunk{1, 1};
+  const int rank = H5Pget_chunk(dcpl.get(), 2, chunk.data());
+  if (rank < 1 || chunk[0] == 0) return lost;
+  for (hsize_t first = 0; first < rows; first += chunk[0]) {
+    std::array<hsize_t, 2> offset{first, 0};
+    unsigned filter_mask = 0;
+    haddr_t addr = HADDR_UNDEF;
+    hsize_t size = 0;
+    ok(H5Dget_chunk_info_by_coord(ds.get(), offset.data(), &filter_mask, &addr, &size),
+       "chunk index of", name);
+    if (addr != HADDR_UNDEF) continue;
+    const hsize_t last = std::min(first + chunk[0], rows);
+    if (!lost.empty() && lost.back().second == first)
+      lost.back().second = last;
+    else
+      lost.emplace_back(first, last);
+  }
+  return lost;
+}
+
+void fill_rows_nan(hid_t parent, const std::string& name, hsize_t first, hsize_t last) {
+  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
+            H5Dclose);
+  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::array<hsize_t, 2> dims{0, 1};
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  const hsize_t width = rank == 2 ? dims[1] : 1;
+  const std::array<hsize_t, 2> start{first, 0}, count{last - first, width};
+  ok(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                         nullptr),
+     "selecting", name);
+  const std::vector<double> nan((last - first) * width,
+                                std::numeric_limits<double>::quiet_NaN());
+  const hsize_t n[1] = {nan.size()};
+  Handle mspace(ok(H5Screate_simple(1, n, nullptr), "dataspace"), H5Sclose);
+  ok(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, mspace.get(), space.get(), H5P_DEFAULT,
+              nan.data()),
+     "writing", name);
 }
 
 std::vector<std::string> dataset_names(hid_t group) {

@@ -6,6 +6,7 @@
 
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace panoptic::h5 {
@@ -52,6 +53,15 @@ hsize_t stack_rows(hid_t parent, const std::string& name);
 //! Cuts a stack to its first `rows` rows (H5Dset_extent), e.g. to drop the snapshots a
 //! restart will write again.
 void truncate_stack(hid_t parent, const std::string& name, hsize_t rows);
+//! The rows [first, last) among the first `rows` of the chunked stack `name` whose chunk
+//! is not allocated (so they read back as the fill value), as ranges. A writer killed
+//! while HDF5 flushed its (unjournaled) chunk index can lose the entries of rows it had
+//! flushed before.
+std::vector<std::pair<hsize_t, hsize_t>> unallocated_rows(hid_t parent,
+                                                          const std::string& name,
+                                                          hsize_t rows);
+//! Writes NaN into rows [first, last) of the stack `name`.
+void fill_rows_nan(hid_t parent, const std::string& name, hsize_t first, hsize_t last);
 //! Names of the datasets directly in a group, in name order.
 std::vector<std::string> dataset_names(hid_t group);
 //! Reads a whole double dataset (any rank, flattened).

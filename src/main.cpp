@@ -214,6 +214,19 @@ int run(const RunArgs& a) {
   };
   Checkpoint last = record(times.front(), y0, index0);
   RunDiagnostics diag(sim, out, restart ? times.front() : 0.0);
+  if (restart) {  // rows the file lost before this restart: said aloud and recorded
+    std::string lost = out.lost_rows();
+    if (!diag.lost_rows().empty()) lost += (lost.empty() ? "" : "; ") + diag.lost_rows();
+    if (!lost.empty()) {
+      std::fprintf(stderr,
+                   "panoptic: warning: %s had lost rows written before the checkpoint (a "
+                   "run killed while HDF5 flushed the file): %s; they are NaN now, the "
+                   "run goes on\n",
+                   out.path().c_str(), lost.c_str());
+      out.set_root_attr("restarts",
+                        out.root_attr("restarts") + "; lost rows (now NaN): " + lost);
+    }
+  }
   const auto snapshot = [&](double t, std::span<const double> y) {
     auto fields = sim.snapshot_fields(y);
     diag.add_snapshot_fields(fields);

@@ -95,7 +95,22 @@ RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path
     fields_[name] = rank == 2 ? dims[1] : 0;
   }
   n_snapshots_ = keep.n_snapshots;
+  lost_ = mark_lost_rows(file_.get(), "snapshots", keep.n_snapshots);
   flush();
+}
+
+std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows) {
+  h5::Handle g = h5::open_group(file, group);
+  std::string lost;
+  for (const std::string& name : h5::dataset_names(g.get()))
+    for (const auto& [first, last] : h5::unallocated_rows(g.get(), name, rows)) {
+      h5::fill_rows_nan(g.get(), name, first, last);
+      lost += (lost.empty() ? "/" : "; /") + group + "/" + name +
+              (last == first + 1
+                   ? " row " + std::to_string(first)
+                   : " rows " + std::to_string(first) + "-" + std::to_string(last - 1));
+    }
+  return lost;
 }
 
 std::vector<double> RunOutput::times_yr() const {

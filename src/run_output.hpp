@@ -27,6 +27,12 @@ struct ContinueRun {
   std::size_t n_snapshots = 0;
 };
 
+//! Writes NaN into the rows below `rows` of every dataset of /<group> whose chunks the
+//! file no longer has (they would read back as 0: a writer killed while HDF5 flushed its
+//! unjournaled chunk index can lose rows flushed long before). Returns them, e.g.
+//! "/snapshots/St row 51", "; "-separated; "" when none.
+std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows);
+
 class RunOutput {
  public:
   //! Creates the file (and its directory). An existing file is an IoError unless
@@ -39,6 +45,9 @@ class RunOutput {
   //! in the file. IoError when the file is missing or holds fewer snapshots.
   RunOutput(const std::filesystem::path& path, ContinueRun keep);
   RunOutput(RunOutput&&) = default;
+  //! After a restart: the kept /snapshots rows the file had lost (their chunks gone, see
+  //! mark_lost_rows), now NaN; "" when none.
+  const std::string& lost_rows() const { return lost_; }
   ~RunOutput();
 
   const std::filesystem::path& path() const { return path_; }
@@ -88,6 +97,7 @@ class RunOutput {
   h5::Handle file_;
   std::map<std::string, std::size_t> fields_;
   std::size_t n_snapshots_ = 0;
+  std::string lost_;
   std::string run_id_;
 };
 

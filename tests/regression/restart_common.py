@@ -72,6 +72,36 @@ def snapshot_differences(a, b, groups=("snapshots",)):
     return diffs
 
 
+def lost_rows_explained(ref, out, groups=("snapshots",)):
+    """Whether every difference between `ref` and `out` in `groups` is a row the restart
+    found lost in the file (its chunk gone after a writer was killed while HDF5 flushed
+    the file), wrote as NaN and named in the root attribute `restarts`: "" if not, else
+    the names of those rows."""
+    with h5py.File(ref, "r") as fa, h5py.File(out, "r") as fb:
+        note = fb.attrs.get("restarts", b"")
+        note = note.decode() if isinstance(note, bytes) else str(note)
+        named = []
+        for group in groups:
+            if group not in fa or group not in fb:
+                continue
+            for name in sorted(set(fa[group]) | set(fb[group])):
+                if name not in fa[group] or name not in fb[group]:
+                    return ""
+                x, y = fa[group][name][()], fb[group][name][()]
+                if x.shape != y.shape:
+                    return ""
+                xr, yr = x.reshape(len(x), -1), y.reshape(len(y), -1)
+                bad = [i for i in range(len(x)) if not np.array_equal(
+                    xr[i].view(np.uint64), yr[i].view(np.uint64))]
+                if not bad:
+                    continue
+                if not all(np.isnan(yr[i]).all() for i in bad) or \
+                        f"/{group}/{name} row" not in note.split("lost rows")[-1]:
+                    return ""
+                named.append(f"/{group}/{name} rows {bad}")
+    return "; ".join(named)
+
+
 def h5diff_snapshots(a, b):
     """h5diff of the two /snapshots groups when Debian's hdf5-tools is installed: True
     when identical, None when h5diff is missing."""
