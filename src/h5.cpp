@@ -22,6 +22,26 @@ void describe(hid_t ds, const std::string& units, const std::string& description
   set_attr(ds, "description", description);
 }
 
+//! An open stack (a dataset of rows): its handle, dataspace, row count and row width.
+struct Stack {
+  Handle ds, space;
+  hsize_t rows = 0, width = 1;
+};
+
+Stack open_stack(hid_t parent, const std::string& name) {
+  Stack st;
+  st.ds =
+      Handle(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
+             H5Dclose);
+  st.space = Handle(ok(H5Dget_space(st.ds.get()), "dataspace of " + name), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(st.space.get());
+  std::array<hsize_t, 2> dims{0, 0};
+  H5Sget_simple_extent_dims(st.space.get(), dims.data(), nullptr);
+  st.rows = dims[0];
+  st.width = rank == 2 ? dims[1] : 1;
+  return st;
+}
+
 }  // namespace
 
 Handle& Handle::operator=(Handle&& o) noexcept {
@@ -102,46 +122,31 @@ void create_stack(hid_t parent, const std::string& name, hsize_t width,
 }
 
 void append_row(hid_t parent, const std::string& name, std::span<const double> row) {
-  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
-            H5Dclose);
-  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
-  const int rank = H5Sget_simple_extent_ndims(space.get());
-  std::array<hsize_t, 2> dims{0, 0};
-  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-  const hsize_t width = rank == 2 ? dims[1] : 1;
-  if (row.size() != width) throw IoError("HDF5: row of wrong length for " + name);
-  std::array<hsize_t, 2> new_dims{dims[0] + 1, dims[1]};
-  ok(H5Dset_extent(ds.get(), new_dims.data()), "extending", name);
-  Handle fspace(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
-  const std::array<hsize_t, 2> start{dims[0], 0}, count{1, width};
+  const Stack st = open_stack(parent, name);
+  if (row.size() != st.width) throw IoError("HDF5: row of wrong length for " + name);
+  const std::array<hsize_t, 2> new_dims{st.rows + 1, st.width};
+  ok(H5Dset_extent(st.ds.get(), new_dims.data()), "extending", name);
+  Handle fspace(ok(H5Dget_space(st.ds.get()), "dataspace of " + name), H5Sclose);
+  const std::array<hsize_t, 2> start{st.rows, 0}, count{1, st.width};
   ok(H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr,
                          count.data(), nullptr),
      "selecting", name);
-  const hsize_t mdims[1] = {width};
+  const hsize_t mdims[1] = {st.width};
   Handle mspace(ok(H5Screate_simple(1, mdims, nullptr), "dataspace"), H5Sclose);
-  ok(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, mspace.get(), fspace.get(), H5P_DEFAULT,
+  ok(H5Dwrite(st.ds.get(), H5T_NATIVE_DOUBLE, mspace.get(), fspace.get(), H5P_DEFAULT,
               row.data()),
      "writing", name);
 }
 
 hsize_t stack_rows(hid_t parent, const std::string& name) {
-  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
-            H5Dclose);
-  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
-  std::array<hsize_t, 2> dims{0, 0};
-  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-  return dims[0];
+  return open_stack(parent, name).rows;
 }
 
 void truncate_stack(hid_t parent, const std::string& name, hsize_t rows) {
-  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
-            H5Dclose);
-  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
-  std::array<hsize_t, 2> dims{0, 0};
-  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-  if (dims[0] == rows) return;
-  dims[0] = rows;
-  ok(H5Dset_extent(ds.get(), dims.data()), "truncating", name);
+  const Stack st = open_stack(parent, name);
+  if (st.rows == rows) return;
+  const std::array<hsize_t, 2> dims{rows, st.width};
+  ok(H5Dset_extent(st.ds.get(), dims.data()), "truncating", name);
 }
 
 std::vector<std::pair<hsize_t, hsize_t>> unallocated_rows(hid_t parent,
@@ -174,22 +179,16 @@ std::vector<std::pair<hsize_t, hsize_t>> unallocated_rows(hid_t parent,
 }
 
 void fill_rows_nan(hid_t parent, const std::string& name, hsize_t first, hsize_t last) {
-  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
-            H5Dclose);
-  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
-  const int rank = H5Sget_simple_extent_ndims(space.get());
-  std::array<hsize_t, 2> dims{0, 1};
-  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-  const hsize_t width = rank == 2 ? dims[1] : 1;
-  const std::array<hsize_t, 2> start{first, 0}, count{last - first, width};
-  ok(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
-                         nullptr),
+  const Stack st = open_stack(parent, name);
+  const std::array<hsize_t, 2> start{first, 0}, count{last - first, st.width};
+  ok(H5Sselect_hyperslab(st.space.get(), H5S_SELECT_SET, start.data(), nullptr,
+                         count.data(), nullptr),
      "selecting", name);
-  const std::vector<double> nan((last - first) * width,
+  const std::vector<double> nan((last - first) * st.width,
                                 std::numeric_limits<double>::quiet_NaN());
   const hsize_t n[1] = {nan.size()};
   Handle mspace(ok(H5Screate_simple(1, n, nullptr), "dataspace"), H5Sclose);
-  ok(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, mspace.get(), space.get(), H5P_DEFAULT,
+  ok(H5Dwrite(st.ds.get(), H5T_NATIVE_DOUBLE, mspace.get(), st.space.get(), H5P_DEFAULT,
               nan.data()),
      "writing", name);
 }
