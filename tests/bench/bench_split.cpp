@@ -41,15 +41,11 @@ struct Outcome {
 
 Outcome measure(const Simulation& sim, std::span<const double> y) {
   const StateLayout& L = sim.model().layout();
-  const Grid& g = sim.grid();
   Outcome o;
   const int sd = *L.find_cell_var("sigma_d");
-  for (int i = 0; i < L.n_cells(); ++i) {
-    o.sigma_d.push_back(y[L.index(i, sd)]);
-    for (const char* pl : {"sigma_pl_coag", "sigma_pl_si"})
-      if (const auto s = L.find_cell_var(pl)) o.m_pl += y[L.index(i, *s)] * g.area(i);
-  }
-  o.m_pl /= units::kMearth;
+  for (int i = 0; i < L.n_cells(); ++i) o.sigma_d.push_back(y[L.index(i, sd)]);
+  const auto [coag, si] = sim.planetesimal_mass(y);  // [g]
+  o.m_pl = (coag + si) / units::kMearth;
   const auto masses = sim.pebble_mass(y);  // [g], in the order of pebble_monitors()
   for (std::size_t k = 0; k < masses.size(); ++k)
     if (sim.pebble_monitors()[k].name == "snow line")
@@ -81,7 +77,7 @@ Outcome split(Simulation& sim, int macro, double t1) {
   const auto transport = [&](std::string_view n) { return !local(n); };
   const double t_end = sim.output_times().back();
   std::vector<double> tb{0.0};
-  for (int k = 0; k <= macro - 1; ++k)
+  for (int k = 0; k < macro; ++k)
     tb.push_back(t1 * std::pow(t_end / t1, double(k) / double(macro - 1)));
   std::vector<double> y = sim.initial_state();
   const auto t0 = std::chrono::steady_clock::now();
