@@ -179,6 +179,7 @@ void CvodeIntegrator::create_cvode(double t0) {
   // only ends a call early, it is not an error (see advance_to).
   check(CVodeSetMaxNumSteps(cvode_, 5000), "CVodeSetMaxNumSteps");
   if (opt_.max_dt > 0.0) check(CVodeSetMaxStep(cvode_, opt_.max_dt), "CVodeSetMaxStep");
+  check(CVodeSetNonlinConvCoef(cvode_, opt_.newton_coef), "CVodeSetNonlinConvCoef");
 }
 
 void CvodeIntegrator::free_cvode() {

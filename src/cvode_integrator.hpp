@@ -45,6 +45,7 @@ struct IntegratorOptions {
   std::vector<double> constraints;  //!< per component: 1 = y >= 0, 0 = none
   long max_steps = 2000000;         //!< total step budget of the run
   double max_dt = 0.0;              //!< largest step [s], 0 = unlimited
+  double newton_coef = 0.03;        //!< CVodeSetNonlinConvCoef (solver.newton_coef)
 };
 
 class CvodeIntegrator {

@@ -341,6 +341,7 @@ IntegratorOptions Simulation::integrator_options() const {
   o.rtol = cfg_.real("solver.rtol");
   o.max_steps = cfg_.integer("solver.max_steps");
   o.max_dt = cfg_.real("solver.max_dt_yr") * kYr;
+  o.newton_coef = cfg_.real("solver.newton_coef");
   const auto& L = *layout_;
   const double atol = cfg_.real("solver.atol_sigma");
   o.atol.resize(L.size());

@@ -105,6 +105,33 @@ TEST(Integrator, StiffRobertsonWithKlu) {
   EXPECT_LT(cvode.stats().nst, 2000);
 }
 
+TEST(Integrator, NewtonCoefficientReachesCvode) {
+  // solver.newton_coef is CVODE's nonlinear convergence coefficient: a much tighter one
+  // must take more Newton iterations per step on the nonlinear Robertson problem and
+  // give the same answer (both are well inside the tolerance of the other).
+  auto run = [](double coef) {
+    auto layout = std::make_shared<StateLayout>(0);
+    std::vector<std::unique_ptr<PhysicsModule>> mods;
+    mods.push_back(std::make_unique<Robertson>(*layout));
+    layout->freeze();
+    DiskModel model(layout, std::move(mods));
+    IntegratorOptions opt;
+    opt.rtol = 1e-6;
+    opt.atol = {1e-12, 1e-16, 1e-12};
+    opt.newton_coef = coef;
+    const double y0[3] = {1.0, 0.0, 0.0};
+    CvodeIntegrator cvode(model, 0.0, y0, opt);
+    cvode.advance_to(4e5);
+    const auto s = cvode.stats();
+    return std::make_pair(static_cast<double>(s.nni) / static_cast<double>(s.nst),
+                          cvode.state()[0]);
+  };
+  const auto [loose_its, loose_y1] = run(1.0);
+  const auto [tight_its, tight_y1] = run(1e-4);
+  EXPECT_GT(tight_its, 1.2 * loose_its);
+  EXPECT_NEAR(tight_y1 / loose_y1, 1.0, 1e-4);
+}
+
 TEST(Integrator, StepBudgetGivesSolverError) {
   auto layout = std::make_shared<StateLayout>(1);
   std::vector<std::unique_ptr<PhysicsModule>> mods;
