@@ -81,17 +81,24 @@ TEST(Integrator, LinearDecayOverTwelveDecades) {
   }
 }
 
-TEST(Integrator, StiffRobertsonWithKlu) {
+namespace {
+//! The Robertson problem as a DiskModel of no cells and three global variables.
+std::unique_ptr<DiskModel> robertson_model() {
   auto layout = std::make_shared<StateLayout>(0);
   std::vector<std::unique_ptr<PhysicsModule>> mods;
   mods.push_back(std::make_unique<Robertson>(*layout));
   layout->freeze();
-  DiskModel model(layout, std::move(mods));
+  return std::make_unique<DiskModel>(layout, std::move(mods));
+}
+}  // namespace
+
+TEST(Integrator, StiffRobertsonWithKlu) {
+  const auto model = robertson_model();
   IntegratorOptions opt;
   opt.rtol = 1e-8;
   opt.atol = {1e-12, 1e-16, 1e-12};
   const double y0[3] = {1.0, 0.0, 0.0};
-  CvodeIntegrator cvode(model, 0.0, y0, opt);
+  CvodeIntegrator cvode(*model, 0.0, y0, opt);
   cvode.advance_to(4e10);
   // Late-time asymptotics, worked out by hand: y2 is quasi-steady, 0.04 y1 = 1e4 y2 y3
   // (y3 ~ 1), so y2 = 4e-6 y1; then d(y1 + y2)/dt = -3e7 y2^2 = -4.8e-4 y1^2 gives
@@ -110,17 +117,13 @@ TEST(Integrator, NewtonCoefficientReachesCvode) {
   // must take more Newton iterations per step on the nonlinear Robertson problem and
   // give the same answer (both are well inside the tolerance of the other).
   auto run = [](double coef) {
-    auto layout = std::make_shared<StateLayout>(0);
-    std::vector<std::unique_ptr<PhysicsModule>> mods;
-    mods.push_back(std::make_unique<Robertson>(*layout));
-    layout->freeze();
-    DiskModel model(layout, std::move(mods));
+    const auto model = robertson_model();
     IntegratorOptions opt;
     opt.rtol = 1e-6;
     opt.atol = {1e-12, 1e-16, 1e-12};
     opt.newton_coef = coef;
     const double y0[3] = {1.0, 0.0, 0.0};
-    CvodeIntegrator cvode(model, 0.0, y0, opt);
+    CvodeIntegrator cvode(*model, 0.0, y0, opt);
     cvode.advance_to(4e5);
     const auto s = cvode.stats();
     return std::make_pair(static_cast<double>(s.nni) / static_cast<double>(s.nst),
