@@ -206,8 +206,8 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
       floor = o.gas_compaction ? soft_max(floor, phi_grav) : phi_grav;
     }
     floor = soft_min(floor, T(o.phi_max));
-    // spec §4.4: relax up to the floor on t_relax = 0.03 min(t_grow, t_cap), with
-    // t_cap = kRelaxCapOmega/Omega where the spec has 1/Omega (see kRelaxCapOmega).
+    // spec §4.4: relax up to the floor on t_relax = kRelaxFraction min(t_grow, t_cap),
+    // with t_cap = kRelaxCapOmega/Omega where the spec has 1/Omega (see kRelaxCapOmega).
     const T rate_grow = growth + 1e-30;
     const T t_grow = 1.0 / rate_grow;
     const T t_relax = kRelaxFraction * soft_min(t_grow, T(kRelaxCapOmega / gas.omega_k));
