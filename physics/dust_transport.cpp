@@ -28,7 +28,7 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
   g_out_ = layout.add_global_var({"m_out_dust", "initial dust mass",
                                   "dust mass that left through r_in, in units of the "
                                   "initial dust mass on the grid",
-                                  sigma_scale * area_total / dust_mass, true});
+                                  sigma_scale * area_total / dust_mass, true, false});
   transported_.push_back(slot_);
 
   const int n = grid.n_cells();
@@ -72,7 +72,7 @@ void DustTransport::set_snowline(StateLayout& layout, int face, double f_ice,
       {"m_sublimated", "initial dust mass",
        "ice that sublimated at the snow line, in units of the "
        "initial dust mass on the grid",
-       layout.cell_var(slot_).abs_scale * units::kPi * r_out * r_out / mass_unit_,
+       layout.cell_var(slot_).abs_scale * units::kPi * r_out * r_out / mass_unit_, false,
        false});
 }
 
@@ -84,7 +84,7 @@ int DustTransport::add_monitor(StateLayout& layout, int face) {
       {"m_through_" + std::to_string(face), "initial dust mass",
        "dust mass that crossed a face inward (pebble flux, spec §8), "
        "in units of the initial dust mass on the grid",
-       layout.cell_var(slot_).abs_scale * units::kPi * r_out * r_out / mass_unit_,
+       layout.cell_var(slot_).abs_scale * units::kPi * r_out * r_out / mass_unit_, false,
        false});
   return monitor_slot_[face];
 }

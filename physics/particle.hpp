@@ -15,7 +15,11 @@
 //! expressions reference temporaries), and no std::max/std::min on T (their derivative
 //! jumps): use soft_max/soft_min/logistic. Gas quantities are plain doubles
 //! (physics/local_gas.hpp): the gas is not differentiated.
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
 
 #include "physics/local_gas.hpp"
 #include "src/autodiff.hpp"
@@ -99,12 +103,21 @@ T soft_min(const T& a, const T& b, double p = kSoftMaxPower) {
   return a * b / hi;
 }
 
+//! |k z| beyond which the logistic step is 0 or 1 to round-off: for k z > 37,
+//! exp(-k z) < 8.5e-17 is below half an ulp of 1, so 1 / (1 + exp(-k z)) is exactly 1 in
+//! double; for k z < -37 the step is below 8.5e-17 and is returned as 0.
+inline constexpr double kLogisticSaturation = 37.0;
+
 //! Logistic step 1 / (1 + exp(-k z)) in (0, 1) [-]; written in the form that never
-//! evaluates exp of a large positive number (no inf, no NaN derivative).
+//! evaluates exp of a large positive number (no inf, no NaN derivative). Saturated
+//! (kLogisticSaturation) it returns 1 or 0 without calling exp.
 template <class T>
 T logistic_step(const T& z, double k) {
   using std::exp;
-  if (z >= 0.0) {
+  const double kz = k * value_of(z);
+  if (kz > kLogisticSaturation) return T(1.0);
+  if (kz < -kLogisticSaturation) return T(0.0);
+  if (kz >= 0.0) {
     const T e = exp(-k * z);
     return T(1.0) / (T(1.0) + e);
   }
@@ -112,13 +125,31 @@ T logistic_step(const T& z, double k) {
   return e / (T(1.0) + e);
 }
 
+//! floor(log2 x) of a finite double x > 0, read from its exponent bits (-1023 for
+//! subnormals, which lie below 2^-1022); no libm call.
+inline int binary_exponent(double x) {
+  return static_cast<int>((std::bit_cast<std::uint64_t>(x) >> 52) & 0x7ff) - 1023;
+}
+
 //! Smooth step in ln x centred on x0: 0.5 at x = x0, 0.05 at x0 * 10^(-w) and 0.95 at
 //! x0 * 10^(+w), w = half_width_dex (spec §3.5, "logistic in ln St over +-0.1 dex") [-].
 //! Equivalent to 1 / (1 + (x0/x)^k) with k = ln 19 / (w ln 10) (k = 12.8 for w = 0.1).
+//! Most calls are far from x0 (a grain's St against 10 or against 0.01), where the step
+//! is saturated: that is decided from the binary exponent of x/x0, so those calls cost
+//! neither the log nor the exp (together 9 of each per cell and right-hand side on the
+//! fiducial scene).
 template <class T>
 T log_step(const T& x, double x0, double half_width_dex) {
   using std::log;
   const double k = std::log(19.0) / (half_width_dex * std::log(10.0));
+  const double r = value_of(x) / x0;
+  if (r > 0.0 && r <= std::numeric_limits<double>::max()) {
+    // log2 r lies in [e, e + 1)
+    const int e = binary_exponent(r);
+    const double kln2 = k * std::numbers::ln2;
+    if (e * kln2 > kLogisticSaturation) return T(1.0);
+    if ((e + 1) * kln2 < -kLogisticSaturation) return T(0.0);
+  }
   const T z = log(x / x0);
   return logistic_step(z, k);
 }

@@ -22,10 +22,6 @@ namespace panoptic {
 
 enum class StreamingInstability { kNone, kD16, kS18, kZcrit };
 
-//! Scale of the Sigma_pl variables for CVODE's absolute tolerance, in units of the
-//! largest initial Sigma_d (planetesimals.cpp explains the 1e4).
-inline constexpr double kBookedScale = 1e4;
-
 //! Critical column metallicity Z = Sigma_d/Sigma_g above which the streaming instability
 //! clumps particles strongly enough to form planetesimals [-] (spec §7.2, option):
 //!   log10 Z_crit = 0.10 (log10 St)^2 + 0.07 log10 St - 2.36,

@@ -93,6 +93,13 @@ extern "C" int jac_callback(sunrealtype t, N_Vector y, N_Vector, SUNMatrix J, vo
   return flag;
 }
 
+// The state vector's weighted RMS norm (used by every Newton iteration and error test):
+// N_VWrmsNorm_Serial sums in one dependent chain of additions, which took 7 % of the
+// fiducial run (perf); weighted_rms_norm lets four of them overlap.
+extern "C" sunrealtype wrms_norm_callback(N_Vector x, N_Vector w) {
+  return weighted_rms_norm(as_span(x), as_span(w));
+}
+
 std::string flag_name(int flag) {
   char* name = CVodeGetReturnFlagName(flag);
   std::string s = name ? name : "NONE";
@@ -111,6 +118,22 @@ void check(int flag, const char* call) {
 
 }  // namespace
 
+double weighted_rms_norm(std::span<const double> x, std::span<const double> w) {
+  const std::size_t n = x.size();
+  double s[4] = {0.0, 0.0, 0.0, 0.0};
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double p = x[i + k] * w[i + k];
+      s[k] += p * p;
+    }
+  for (; i < n; ++i) {
+    const double p = x[i] * w[i];
+    s[0] += p * p;
+  }
+  return std::sqrt(((s[0] + s[1]) + (s[2] + s[3])) / static_cast<double>(n));
+}
+
 void cvode_error_handler(int, const char*, const char* function, char* msg, void* data) {
   auto* self = static_cast<CvodeIntegrator*>(data);
   self->cvode_message_ = std::string(function ? function : "") + ": " + (msg ? msg : "");
@@ -125,6 +148,8 @@ CvodeIntegrator::CvodeIntegrator(DiskModel& model, double t0, std::span<const do
     throw SolverError("SUNContext_Create failed");
   sunctx_ = ctx;
   y_ = N_VNew_Serial(n, ctx);
+  // CVODE clones its work vectors from y_, operations included.
+  nv(y_)->ops->nvwrmsnorm = wrms_norm_callback;
   atol_ = N_VNew_Serial(n, ctx);
   callback_data_ = {&model_, N_VNew_Serial(n, ctx), nullptr};
   N_VConst(0.0, nv(callback_data_.newton_iterate));

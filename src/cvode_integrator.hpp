@@ -48,6 +48,10 @@ struct IntegratorOptions {
   double newton_coef = 0.03;        //!< CVodeSetNonlinConvCoef (solver.newton_coef)
 };
 
+//! CVODE's weighted RMS norm sqrt(sum_i (x_i w_i)^2 / n), summed in four independent
+//! partial sums (the integrator installs it as the state vector's norm).
+double weighted_rms_norm(std::span<const double> x, std::span<const double> w);
+
 class CvodeIntegrator {
  public:
   CvodeIntegrator(DiskModel& model, double t0, std::span<const double> y0,

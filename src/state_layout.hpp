@@ -15,6 +15,12 @@ struct VarInfo {
   std::string description;  //!< one line
   double abs_scale = 1.0;   //!< typical magnitude; CVODE atol = atol_rel * abs_scale
   bool nonnegative = true;  //!< CVODE constraint y >= 0
+  //! false for a booked quantity that no right-hand side reads back (a quadrature such
+  //! as Sigma_pl or the mass through r_in): it is integrated with the system but left out
+  //! of CVODE's error test and Newton convergence test, as CVODES does with quadrature
+  //! variables by default (errconQ = false). Its accuracy then follows that of the
+  //! variables it integrates.
+  bool error_test = true;
 };
 
 class StateLayout {

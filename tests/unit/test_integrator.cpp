@@ -2,6 +2,8 @@
 // 1e6 s^-1 against exp(-k t), and the stiff Robertson kinetics against its reference
 // values (Hairer & Wanner; SUNDIALS cvRoberts_dns example output).
 #include <gtest/gtest.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
 
 #include <cmath>
 #include <memory>
@@ -207,4 +209,29 @@ TEST(Integrator, StalledStepsStopWithTheStateOfTheFailingCell) {
     EXPECT_NEAR(cvode.time(), 1.0, 1e-12);
   }
   EXPECT_LT(cvode.stats().nst, 2000) << "stopped long before solver.max_steps";
+}
+
+// The state vector's norm (weighted_rms_norm, four partial sums) against N_VWrmsNorm of
+// SUNDIALS' serial vector and a long-double sum, for lengths that are and are not
+// multiples of four.
+TEST(Integrator, WeightedRmsNormMatchesSundials) {
+  SUNContext ctx = nullptr;
+  ASSERT_EQ(SUNContext_Create(nullptr, &ctx), 0);
+  for (int n : {1, 2, 3, 4, 5, 7, 8, 13, 1050, 1051}) {
+    std::vector<double> x(n), w(n);
+    long double sum = 0.0L;
+    for (int i = 0; i < n; ++i) {
+      x[i] = std::sin(1.3 * i + 0.2) * std::pow(10.0, (i % 7) - 3);
+      w[i] = 1.0 / (1e-5 * std::abs(std::cos(0.7 * i)) + 1e-12 * (i % 3 + 1));
+      sum += static_cast<long double>(x[i] * w[i]) * (x[i] * w[i]);
+    }
+    const double expect = static_cast<double>(std::sqrt(sum / n));
+    const double got = weighted_rms_norm(x, w);
+    EXPECT_NEAR(got, expect, 1e-15 * expect) << "n " << n;
+    N_Vector xv = N_VMake_Serial(n, x.data(), ctx), wv = N_VMake_Serial(n, w.data(), ctx);
+    EXPECT_NEAR(got, N_VWrmsNorm(xv, wv), 1e-15 * expect) << "n " << n;
+    N_VDestroy(xv);
+    N_VDestroy(wv);
+  }
+  SUNContext_Free(&ctx);
 }

@@ -376,5 +376,45 @@ TEST(SmoothSwitches, SoftMaxSoftMinLogistic) {
   EXPECT_NEAR(s.derivatives()(1), 0.5 * std::pow(2.0, 0.125), 1e-14);
 }
 
+// The saturated log_step returns 0 or 1 without evaluating the logistic; it must agree
+// with the logistic 1 / (1 + (x0/x)^k) to round-off everywhere: the shortcut may only
+// fire where the logistic is within 8.5e-17 of 0 or 1 (kLogisticSaturation). Scanned
+// across both saturation edges (to twice their distance from x0) for three widths, 8001
+// points each, double and AD.
+TEST(SmoothSwitches, SaturatedLogStepEqualsTheLogistic) {
+  for (double w : {0.01, 0.1, 0.3}) {
+    const double k = std::log(19.0) / (w * std::log(10.0));
+    const double x0 = 3.7;
+    const double edge_dex = kLogisticSaturation / k / std::log(10.0);
+    int shortcut_hits = 0;
+    for (int i = -4000; i <= 4000; ++i) {
+      const double x = x0 * std::pow(10.0, 2.0 * edge_dex * i / 4000.0);
+      const long double exact =
+          1.0L / (1.0L + std::pow(static_cast<long double>(x0 / x), k));
+      const double v = log_step(x, x0, w);
+      // saturated (0 or 1): within 1.12e-16 (the shortcut's 8.5e-17, or the rounding of
+      // 1 / (1 + e) to 1 for e < 2^-53); elsewhere to the round-off of x0/x (condition
+      // number k) and of z = ln(x/x0) (amplified by |k z| < 37 in exp(k z))
+      const bool saturated = v == 0.0 || v == 1.0;
+      const double bound = saturated ? 1.12e-16
+                                     : 4.0 * (k + kLogisticSaturation) * 2.2e-16 *
+                                           static_cast<double>(exact);
+      ASSERT_LE(std::abs(v - static_cast<double>(exact)), bound)
+          << "w " << w << " x " << x;
+      if (saturated) ++shortcut_hits;
+      const AD xa(x, 1, 0);
+      const AD va = log_step(xa, x0, w);
+      EXPECT_EQ(va.value(), v);
+      // d/dx of the logistic: k s (1 - s) / x; zero where saturated to round-off
+      const double dexact = k * static_cast<double>(exact * (1.0L - exact)) / x;
+      ASSERT_LE(std::abs(va.derivatives()(0) - dexact), 1e-15 * k / x + 1e-12 * dexact);
+    }
+    EXPECT_GT(shortcut_hits, 3000);  // the scan reaches well into the saturated tails
+  }
+  // no NaN hidden behind the shortcut
+  EXPECT_TRUE(std::isnan(log_step(std::nan(""), 1.0, 0.1)));
+  EXPECT_EQ(log_step(0.0, 1.0, 0.1), 0.0);
+}
+
 }  // namespace
 }  // namespace panoptic::physics

@@ -1,0 +1,70 @@
+// Which state variables CVODE's error test sees (VarInfo::error_test): the booked
+// quantities that no right-hand side reads back (planetesimal surface densities, masses
+// through r_in, sublimated, pebble-flux monitors) are left out of it, as CVODES does with
+// quadratures. The premise is checked on the right-hand side itself: changing such a
+// variable changes no component of the RHS, bit for bit.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "src/config.hpp"
+#include "src/cvode_integrator.hpp"
+#include "src/disk_model.hpp"
+#include "src/simulation.hpp"
+
+namespace panoptic {
+namespace {
+
+// The fiducial scene, with static and with evolving (viscous) gas.
+void check_booked_out_of_error_test(bool gas_evolves) {
+  const std::string file = std::string(PANOPTIC_SOURCE_DIR) + "/params/fiducial.toml";
+  const std::vector<std::string> sets{
+      "grid.n_cells=40", "solver.atol_sigma=1e-11",
+      gas_evolves ? "gas.evolve=true" : "gas.evolve=false"};
+  Simulation sim(load_scene(file, sets));
+  CvodeIntegrator cvode(sim.model(), 0.0, sim.initial_state(), sim.integrator_options());
+  cvode.advance_to(300.0 * 3.156e7);  // growing, compacting, converting cells
+  std::vector<double> y(cvode.state().begin(), cvode.state().end());
+  const auto& L = sim.model().layout();
+  const auto opt = sim.integrator_options();
+
+  const std::set<std::string> booked_cell{"sigma_pl_coag", "sigma_pl_si"};
+  std::vector<double> f0(y.size()), f1(y.size());
+  sim.model().rhs(0.0, y, f0);
+  int out_of_test = 0, globals_out = 0;
+  for (long i = 0; i < L.size(); ++i) {
+    const VarInfo& v = L.info_of(i);
+    const bool booked = booked_cell.count(v.name) > 0 || v.name == "m_out_dust" ||
+                        v.name == "m_out_gas" || v.name == "m_sublimated" ||
+                        v.name.rfind("m_through_", 0) == 0;
+    EXPECT_EQ(v.error_test, !booked) << L.describe(i);
+    if (v.error_test) {
+      EXPECT_DOUBLE_EQ(opt.atol[i], 1e-11 * v.abs_scale) << L.describe(i);
+      continue;
+    }
+    ++out_of_test;
+    if (L.cell_of(i) < 0) ++globals_out;
+    EXPECT_GE(opt.atol[i], 1e20 * 1e-11 * v.abs_scale) << L.describe(i);
+    // nothing reads it back: the whole RHS is unchanged, bit for bit
+    const double saved = y[i];
+    y[i] = 3.0 * saved + 1e-3 * v.abs_scale;
+    sim.model().rhs(0.0, y, f1);
+    y[i] = saved;
+    for (long k = 0; k < L.size(); ++k)
+      ASSERT_EQ(f1[k], f0[k]) << "d(" << L.describe(k) << ")/dt reads " << L.describe(i);
+  }
+  // both planetesimal channels in every cell, and the global books
+  EXPECT_EQ(out_of_test - globals_out, 2 * L.n_cells());
+  // through r_in, sublimated, the snow-line pebble monitor (and the gas through r_in)
+  EXPECT_GE(globals_out, gas_evolves ? 4 : 3);
+}
+
+TEST(ErrorWeights, BookedQuantitiesAreOutOfTheErrorTestAndReadByNoRhs) {
+  check_booked_out_of_error_test(false);
+  check_booked_out_of_error_test(true);
+}
+
+}  // namespace
+}  // namespace panoptic
