@@ -28,7 +28,7 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
   g_out_ = layout.add_global_var({"m_out_dust", "initial dust mass",
                                   "dust mass that left through r_in, in units of the "
                                   "initial dust mass on the grid",
-                                  sigma_scale * area_total / dust_mass, true, false});
+                                  sigma_scale * area_total / dust_mass, false, false});
   transported_.push_back(slot_);
 
   const int n = grid.n_cells();

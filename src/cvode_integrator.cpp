@@ -275,10 +275,9 @@ void CvodeIntegrator::advance_to(double t_out,
     const double t_before = t_;
     t_ = t_reached;  // on a failure: the last time reached, y_ the state there
     if (flag == CV_CONSTR_FAIL)
-      fail(
-          flag,
-          "every retry of the step drove a non-negative variable (Sigma_d, Sigma_pl or a "
-          "booked mass) below zero; a tighter solver.rtol may get past it");
+      fail(flag,
+           "every retry of the step drove a non-negative variable (Sigma_d or Sigma_g) "
+           "below zero; a tighter solver.rtol may get past it");
     if (flag < 0) fail(flag, "");
     // Steps below the round-off of t (CVODE warns "t + h = t" and goes on) do not
     // advance the solution: where the right-hand side stops being finite just ahead (a

@@ -19,7 +19,9 @@ struct VarInfo {
   //! as Sigma_pl or the mass through r_in): it is integrated with the system but left out
   //! of CVODE's error test and Newton convergence test, as CVODES does with quadrature
   //! variables by default (errconQ = false). Its accuracy then follows that of the
-  //! variables it integrates.
+  //! variables it integrates. Such a variable must not be `nonnegative`: without an
+  //! error weight CVODE's constraint correction would clip it to zero at any size,
+  //! losing the clipped amount from the budget.
   bool error_test = true;
 };
 

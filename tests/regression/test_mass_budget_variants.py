@@ -1,5 +1,6 @@
 """The mass budget of test_mass_budget.py for variants: evolving gas, transport alone with
-a radially varying St (both to 1e-12), and a loose tolerance, rtol = 1e-3.
+a radially varying St (both to 1e-12), and loose tolerances, rtol = 1e-3 and (fiducial)
+1e-2.
 
 At rtol = 1e-3 the budget is not exact to round-off: CVODE accepts steps whose Sigma_d
 dips below zero by less than its error weights, and the restart of CVODE at every
@@ -36,6 +37,17 @@ def main():
     err = np.max(np.abs(m / m[0] - 1))
     print(f"compact_fragmentation, rtol 1e-3: max budget error {err:.1e}")
     c.check(err < 1e-10, f"rtol 1e-3: budget closes to 1e-10 ({err:.1e})")
+    # The booked quantities (Sigma_pl, masses through r_in, ...) are out of CVODE's error
+    # test; were they still constrained to be >= 0, CVODE would clip their negative
+    # excursions to zero at any size and lose that mass: 2.4e-8 on fiducial at rtol 1e-2
+    # (2d99b3b), where Newton iterates of drained cells go slightly negative.
+    out = f"{args.workdir}/loose_fiducial.h5"
+    run(args.exe, "params/fiducial.toml", out, ["solver.rtol=1e-2"])
+    s = load_run(out).snapshots
+    m = s["m_dust"] + s["m_out_inner"] + s["m_sublimated"] + s["m_pl_coag"] + s["m_pl_si"]
+    err = np.max(np.abs(m / m[0] - 1))
+    print(f"fiducial, rtol 1e-2: max budget error {err:.1e}")
+    c.check(err < 1e-10, f"fiducial rtol 1e-2: budget closes to 1e-10 ({err:.1e})")
     c.finish()
 
 
