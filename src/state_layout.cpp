@@ -6,8 +6,19 @@
 
 namespace panoptic {
 
+namespace {
+// A variable out of CVODE's error test has no error weight, so a >= 0 constraint on it
+// would be enforced by clipping at any size, losing mass from the budget (VarInfo).
+void check_constraint(const VarInfo& info) {
+  if (!info.error_test && info.nonnegative)
+    throw std::logic_error("StateLayout: " + info.name +
+                           " is out of the error test and must not be nonnegative");
+}
+}  // namespace
+
 int StateLayout::add_cell_var(VarInfo info) {
   if (frozen_) throw std::logic_error("StateLayout: variable added after freeze()");
+  check_constraint(info);
   if (2 * (n_cell_vars() + 1) > kMaxLocalDerivs)
     throw std::logic_error("StateLayout: raise kMaxLocalDerivs in src/autodiff.hpp");
   cell_vars_.push_back(std::move(info));
@@ -16,6 +27,7 @@ int StateLayout::add_cell_var(VarInfo info) {
 
 int StateLayout::add_global_var(VarInfo info) {
   if (frozen_) throw std::logic_error("StateLayout: variable added after freeze()");
+  check_constraint(info);
   global_vars_.push_back(std::move(info));
   return n_global_vars() - 1;
 }

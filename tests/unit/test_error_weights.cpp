@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "src/cvode_integrator.hpp"
 #include "src/disk_model.hpp"
 #include "src/simulation.hpp"
+#include "src/state_layout.hpp"
 
 namespace panoptic {
 namespace {
@@ -62,6 +64,17 @@ void check_booked_out_of_error_test(bool gas_evolves) {
   EXPECT_EQ(out_of_test - globals_out, 2 * L.n_cells());
   // through r_in, sublimated, the snow-line pebble monitor (and the gas through r_in)
   EXPECT_GE(globals_out, gas_evolves ? 4 : 3);
+}
+
+// The layout refuses a variable that is out of the error test and constrained >= 0.
+TEST(ErrorWeights, LayoutRefusesAConstrainedVariableOutOfTheErrorTest) {
+  StateLayout layout(4);
+  EXPECT_THROW(layout.add_cell_var({"booked", "g cm^-2", "", 1.0, true, false}),
+               std::logic_error);
+  EXPECT_THROW(layout.add_global_var({"booked", "g", "", 1.0, true, false}),
+               std::logic_error);
+  EXPECT_NO_THROW(layout.add_cell_var({"booked", "g cm^-2", "", 1.0, false, false}));
+  EXPECT_NO_THROW(layout.add_cell_var({"sigma", "g cm^-2", "", 1.0, true, true}));
 }
 
 TEST(ErrorWeights, BookedQuantitiesAreOutOfTheErrorTestAndReadByNoRhs) {
