@@ -44,7 +44,7 @@ ViscousGas::ViscousGas(StateLayout& layout, const GasDisk& disk, const Grid& gri
       layout.add_global_var({"m_out_gas", "initial gas mass",
                              "gas mass accreted through r_in, in units of the initial "
                              "gas mass on the grid",
-                             sigma_scale * area_total / m, false, false});
+                             sigma_scale * area_total / m, false});
 }
 
 void ViscousGas::declare_pattern(PatternBuilder& p) const {
