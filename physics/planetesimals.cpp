@@ -28,17 +28,16 @@ Planetesimals::Planetesimals(StateLayout& layout, const ParticleCodec& codec,
   // constraint correction is accepted when small in the weighted norm), and each clip
   // loses mass from the budget (2.4e-8 at rtol 1e-2 on fiducial before this). Sigma_pl
   // dips below zero only where Sigma_d itself sits within its tolerance of zero.
-  const double pl_scale = sigma_scale;
   if (opt_.coagulation)
     coag_slot_ =
         layout.add_cell_var({"sigma_pl_coag", "g cm^-2",
                              "planetesimals formed by direct coagulation (spec §7.1)",
-                             pl_scale, false, false});
+                             sigma_scale, false, false});
   if (opt_.si != StreamingInstability::kNone)
     si_slot_ = layout.add_cell_var({"sigma_pl_si", "g cm^-2",
                                     "planetesimals formed by the streaming instability "
                                     "(spec §7.2)",
-                                    pl_scale, false, false});
+                                    sigma_scale, false, false});
 }
 
 template <class T>

@@ -16,12 +16,13 @@ struct VarInfo {
   double abs_scale = 1.0;   //!< typical magnitude; CVODE atol = atol_rel * abs_scale
   bool nonnegative = true;  //!< CVODE constraint y >= 0
   //! false for a booked quantity that no right-hand side reads back (a quadrature such
-  //! as Sigma_pl or the mass through r_in): it is integrated with the system but left out
-  //! of CVODE's error test and Newton convergence test, as CVODES does with quadrature
-  //! variables by default (errconQ = false). Its accuracy then follows that of the
-  //! variables it integrates. Such a variable must not be `nonnegative`: without an
-  //! error weight CVODE's constraint correction would clip it to zero at any size,
-  //! losing the clipped amount from the budget.
+  //! as Sigma_pl): it is integrated with the system but left out of CVODE's error test
+  //! and Newton convergence test, as CVODES does with quadrature variables by default
+  //! (errconQ = false). Its accuracy then follows that of the variables it integrates.
+  //! (The booked global masses stay in the test: physics/dust_transport.cpp says why.)
+  //! Such a variable must not be `nonnegative`: without an error weight CVODE's
+  //! constraint correction would clip it to zero at any size, losing the clipped amount
+  //! from the budget.
   bool error_test = true;
 };
 
