@@ -144,8 +144,7 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
     const double st_s = small_projectile_st(o, sp, gas);
     r.dv_ls = dv_small_projectile(r.St, m, st_s, sp.m0, gas);
     // spec §5.2: S(x) = 1/2 [1 - tanh((x - 1)/w)], x = dv_ls / v_eros
-    using std::tanh;
-    const T s = 0.5 * (1.0 - tanh((r.dv_ls / o.v_eros - 1.0) / o.w_eros));
+    const T s = tanh_step<T>((1.0 - r.dv_ls / o.v_eros) / o.w_eros);
     if (o.erosion == ErosionModel::kHalt) {  // E1: growth halts where dv_ls = v_eros
       factor = s;
     } else {  // E2: rate balance with an implicit reservoir of small projectiles
@@ -190,22 +189,25 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
 
   if (o.gas_compaction || o.self_gravity) {
     using std::log;
-    T floor = T(0.0);
-    const T nmono = m / sp.m0;
+    // The floors are power laws of m, St and the gas: taken in logs (ln_soft_max,
+    // ln_soft_min), they cost two logs instead of four pow() and two p-th roots.
+    const T ln_nmono = log(m / sp.m0);
+    T ln_floor = T(0.0);
     if (o.gas_compaction) {  // spec §4.3, Kataoka et al. 2013b: P_gas = P_c
+      // phi_gas = (a0 m0 dv_pg Omega / (pi E_roll St))^(3/7) N^(1/7)
       const T dv_pg = gas_drift_speed(r.St, gas);
-      const T phi_gas =
-          pow(sp.a0 * sp.m0 * dv_pg * gas.omega_k / (kPi * sp.e_roll * r.St), 3.0 / 7.0) *
-          pow(nmono, 1.0 / 7.0);
-      floor = phi_gas;
+      ln_floor = (3.0 / 7.0) *
+                     log(sp.a0 * sp.m0 * dv_pg * gas.omega_k / (kPi * sp.e_roll * r.St)) +
+                 ln_nmono / 7.0;
     }
     if (o.self_gravity) {  // spec §4.3, Kataoka et al. 2013b: P_grav = P_c
-      const double c =
-          std::pow(units::kG * sp.m0 * sp.m0 / (kPi * sp.a0 * sp.e_roll), 0.6);
-      const T phi_grav = c * pow(nmono, 0.4);
-      floor = o.gas_compaction ? soft_max(floor, phi_grav) : phi_grav;
+      // phi_grav = (G m0^2 / (pi a0 E_roll))^(3/5) N^(2/5)
+      const double ln_c =
+          0.6 * std::log(units::kG * sp.m0 * sp.m0 / (kPi * sp.a0 * sp.e_roll));
+      const T ln_grav = ln_c + 0.4 * ln_nmono;
+      ln_floor = o.gas_compaction ? ln_soft_max(ln_floor, ln_grav) : ln_grav;
     }
-    floor = soft_min(floor, T(o.phi_max));
+    ln_floor = ln_soft_min(ln_floor, T(std::log(o.phi_max)));
     // spec §4.4: relax up to the floor on t_relax = kRelaxFraction min(t_grow, t_cap),
     // with t_cap = kRelaxCapOmega/Omega where the spec has 1/Omega (see kRelaxCapOmega).
     const T rate_grow = growth + 1e-30;
@@ -214,7 +216,7 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
     // softplus sharpness 100: below the floor by z the push is e^(-100 z)-small, so phi
     // follows max(phi_dyn, floor) to a few per cent (k = 1 or 10 leaks: phi would sit
     // a factor ~2 above the floor wherever t_relax << t_grow).
-    r.dlnphi_dt += softplus<T>(log(floor) - log(phi), 100.0) / t_relax;
+    r.dlnphi_dt += softplus<T>(ln_floor - log(phi), 100.0) / t_relax;
   }
   return r;
 }

@@ -31,6 +31,9 @@ namespace panoptic::physics {
 inline constexpr double kSoftMaxPower = 8.0;
 //! Newton steps on ln St in stokes_number() (5 reach round-off) [-].
 inline constexpr int kDragIterations = 6;
+//! Re_p below which f_Re = (1 + Re_p^(0.4 p) + (0.01833 Re_p)^p)^(1/p) is 1 to round-off:
+//! Re_p^3.2 < 1e-16 [-].
+inline constexpr double kReNegligible = 1e-5;
 //! C_D = 0.44 written as 24/Re_p times (this constant * Re_p) (Weidenschilling 1977) [-].
 inline constexpr double kCdNewton = 0.44 / 24.0;
 
@@ -49,6 +52,42 @@ inline int power_of_two_exponent(double p) {
   for (int k = 1; k <= 6; ++k)
     if (p == double(1 << k)) return k;
   return 0;
+}
+
+//! Cube root and log(1 + x) for double and for AutoDiff (Eigen's AutoDiff has neither):
+//! the value from libm, the derivative by the chain rule. cbrt is about twice as fast as
+//! pow(x, 1/3); log1p keeps the precision of log(1 + x) for x below the round-off of 1.
+//! The plain derivative vector of an AutoDiff type whose derivatives may be an Eigen
+//! expression (AutoDiff arithmetic returns those).
+template <class D>
+using PlainDerivatives = typename Eigen::internal::remove_all<D>::type::PlainObject;
+
+inline double cbrt_of(double x) { return std::cbrt(x); }
+template <class D>
+Eigen::AutoDiffScalar<PlainDerivatives<D>> cbrt_of(const Eigen::AutoDiffScalar<D>& x) {
+  const double c = std::cbrt(x.value());
+  return Eigen::AutoDiffScalar<PlainDerivatives<D>>(
+      c, PlainDerivatives<D>(x.derivatives() * (c / (3.0 * x.value()))));
+}
+inline double log1p_of(double x) { return std::log1p(x); }
+template <class D>
+Eigen::AutoDiffScalar<PlainDerivatives<D>> log1p_of(const Eigen::AutoDiffScalar<D>& x) {
+  return Eigen::AutoDiffScalar<PlainDerivatives<D>>(
+      std::log1p(x.value()),
+      PlainDerivatives<D>(x.derivatives() * (1.0 / (1.0 + x.value()))));
+}
+
+//! log(1 + y) for y >= 0, with the series where it is exact to round-off: y - y^2/2 for
+//! y < 1e-8 (next term y^3/3 < 3.4e-17 y) and ln y + 1/y for y > 1e8 (next term
+//! 1/(2 y^2) < 3e-18 of the result). The drag solve takes ln(1 + (x/f_Re)^p) of grains
+//! that are mostly deep in one regime, and log1p costs more than log.
+template <class T>
+T log1p_nonneg(const T& y) {
+  using std::log;
+  const double v = value_of(y);
+  if (v < 1e-8) return y - 0.5 * y * y;
+  if (v > 1e8) return log(y) + 1.0 / y;
+  return log1p_of(y);
 }
 
 //! x^p. For p a power of two by repeated squaring: exact to round-off and an order of
@@ -101,6 +140,45 @@ template <class T>
 T soft_min(const T& a, const T& b, double p = kSoftMaxPower) {
   const T hi = soft_max(a, b, p);
   return a * b / hi;
+}
+
+//! soft_max() from the logarithms of its arguments: ln soft_max(e^la, e^lb) = hi +
+//! log1p(exp(-p |la - lb|)) / p, hi = max(la, lb) [ln of the units of a, b]. For laws
+//! that are power laws (products of pow()) the logs cost less than the powers. Where
+//! p |la - lb| > 40 the correction (< 5e-19) is below round-off and hi is returned
+//! without calling exp.
+template <class T>
+T ln_soft_max(const T& la, const T& lb, double p = kSoftMaxPower) {
+  using std::exp;
+  const bool a_larger = value_of(la) >= value_of(lb);
+  const T& hi = a_larger ? la : lb;
+  const T d = (a_larger ? lb : la) - hi;  // <= 0
+  if (p * value_of(d) < -40.0) return hi;
+  return hi + log1p_of(exp(p * d)) / p;
+}
+
+//! soft_min() from the logarithms of its arguments: ln soft_min(e^la, e^lb) = lo -
+//! log1p(exp(-p |la - lb|)) / p, lo = min(la, lb) (soft_min = a b / soft_max).
+template <class T>
+T ln_soft_min(const T& la, const T& lb, double p = kSoftMaxPower) {
+  using std::exp;
+  const bool a_smaller = value_of(la) <= value_of(lb);
+  const T& lo = a_smaller ? la : lb;
+  const T d = lo - (a_smaller ? lb : la);  // <= 0
+  if (p * value_of(d) < -40.0) return lo;
+  return lo - log1p_of(exp(p * d)) / p;
+}
+
+//! Step (1 + tanh z) / 2 in [0, 1] [-]. For |z| > 20 tanh(z) is +-1 in double (1 - |tanh|
+//! = 2 e^(-2|z|) < 1e-17, below half an ulp of 1), so the step is exactly 1 or 0; that is
+//! returned without calling tanh (the same bits).
+template <class T>
+T tanh_step(const T& z) {
+  using std::tanh;
+  const double v = value_of(z);
+  if (v > 20.0) return T(1.0);
+  if (v < -20.0) return T(0.0);
+  return 0.5 * (1.0 + tanh(z));
 }
 
 //! |k z| beyond which the logistic step is 0 or 1 to round-off: for k z > 37,
@@ -173,9 +251,8 @@ T internal_density(const T& phi, double rho0) {
 //! Aggregate radius a = (3 m / (4 pi rho0 phi))^(1/3) (spec §2) [cm]; m [g], phi [-].
 template <class T>
 T radius(const T& m, const T& phi, double rho0) {
-  using std::pow;
   const T v = 3.0 * m / (4.0 * units::kPi * rho0 * phi);
-  return pow(v, 1.0 / 3.0);
+  return cbrt_of(v);
 }
 
 //! Number of monomers N = m / m0 (spec §2) [-].
@@ -296,29 +373,34 @@ T stokes_number(const T& m, const T& phi, double rho0, const LocalGas& gas,
 
   const double p = kSoftMaxPower;
   const T x = knudsen_ratio(a, gas);
-  // A grain far inside the Epstein regime (x < 1e-3: g - 1 < x^8/8 = 1e-25 for any Re_p,
-  // since f_Re >= 1) has St = St_Ep to round-off: the Newton solve would return
-  // exp(ln St_Ep).
-  if (value_of(x) < 1e-3) return st_ep;
+  // A grain inside the Epstein regime (x < 0.01: ln g < x^8/8 = 1.25e-17 for any Re_p,
+  // since f_Re >= 1, below half an ulp of 1) has St = St_Ep to round-off: the Newton
+  // solve would return exp(ln St_Ep).
+  if (value_of(x) < 1e-2) return st_ep;
   const T ln_st_ep = log(st_ep);
-  const T g0 = soft_max(T(1.0), x);
-  T u = ln_st_ep + log(g0);  // Re_p = 0 (Stokes) first guess
+  // g = soft_max(1, x / f_Re) = (1 + y^p)^(1/p) with y^p = x^p / f_Re^p, so ln g =
+  // log1p(x^p / f_Re^p) / p: no p-th root, no soft_max (drag_regime_factor() is the same
+  // function; x < 3e38 in any disk, so x^p is finite).
+  const T xp = power_p<T>(x, p);
+  T u = ln_st_ep + log1p_nonneg(xp) / p;  // Re_p = 0 (Stokes) first guess
   for (int it = 0; it < iterations; ++it) {
     const T st = exp(u);
     const T dv = gas_drift_speed(st, gas);
     const T re_p = particle_reynolds(a, dv, gas);
+    // At the first guess (the Re_p = 0 law), Re_p < kReNegligible makes f_Re^p = 1 +
+    // Re_p^3.2 + ... equal to 1 to round-off: the guess solves G(u) = 0, and St is the
+    // law's value without a Newton step (no pow; most grains before the drift barrier).
+    if (it == 0 && value_of(re_p) < kReNegligible) return st;
     // f_Re and its log-slope share Re_p^(0.4 p) and (0.01833 Re_p)^p: computed once
     // (the same expressions as reynolds_correction() and its _log_slope()).
     const T b = pow(re_p, 0.4 * p);
     const T c = power_p<T>(kCdNewton * re_p, p);
-    const T f = root_p<T>(1.0 + b + c, p);
-    const T y = x / f;
-    const T g = soft_max(T(1.0), y);
-    const T yp = power_p<T>(y, p);
+    const T fp = 1.0 + b + c;              // f_Re^p
+    const T yp = xp / fp;                  // (x / f_Re)^p
     const T dlng_dlnf = -yp / (1.0 + yp);  // d ln g / d ln f for g = (1 + (x/f)^p)^(1/p)
-    const T dlnf_dlnre = (0.4 * b + c) / (1.0 + b + c);
+    const T dlnf_dlnre = (0.4 * b + c) / fp;
     const T slope = dlng_dlnf * dlnf_dlnre * gas_drift_speed_log_slope(st);
-    const T residual = u - ln_st_ep - log(g);  // G(u)
+    const T residual = u - ln_st_ep - log1p_nonneg(yp) / p;  // G(u)
     u = u - residual / (1.0 - slope);
     // Once |G| < 1e-12 the next Newton step is far below the round-off of u (quadratic
     // convergence) and the AD derivative is converged to ~|G| (the Newton map is flat at

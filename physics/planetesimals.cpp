@@ -65,8 +65,7 @@ void Planetesimals::cell_rates(int cell, const T* yc, T& coag, T& si) const {
     const double tau_pl = opt_.tau_pl_omega / g.omega_k;
     // dm/dt > 0, smoothly: on while the particle e-folds its mass within 1e9 / Omega (a
     // particle held by erosion or fragmentation grows far slower than that)
-    using std::tanh;
-    const T growing = 0.5 * (1.0 + tanh(1e9 / g.omega_k * dlnm_dt));
+    const T growing = physics::tanh_step<T>(1e9 / g.omega_k * dlnm_dt);
     coag = sigma / tau_pl * physics::log_step(st, opt_.st_pl, opt_.width_dex) * growing;
   }
   if (opt_.si == StreamingInstability::kNone) return;

@@ -289,6 +289,43 @@ TEST(DragLaw, ContinuousAcrossEveryRegimeBoundary) {
   }
 }
 
+TEST(DragLaw, ShortcutsReturnTheFixedPointToRoundOff) {
+  // stokes_number returns St_Ep for x < 0.01 and the Re_p = 0 law without a Newton step
+  // where Re_p < kReNegligible. Scan m across both edges (x = 0.01 and Re_p = 1e-5 fall
+  // between 1e-9 and 1e9 g at these radii and filling factors) and hold St to the fixed
+  // point St = St_Ep g(x, Re_p(St)) of the p-norm law written with soft_max
+  // (drag_regime_factor) to the round-off of the solve, which works in u = ln St (|u|
+  // ulp from exp(u)): the shortcuts drop terms below half an ulp. With the Epstein edge
+  // at x < 0.1 instead (ln g up to 1.25e-9) this fails. (The Newton path, whose converged
+  // residual is < 1e-12, is held to that in
+  // NewtonIterationSolvesTheFixedPointEverywhere.)
+  int epstein = 0, re_zero = 0, newton = 0;
+  for (double r_au : {1.0, 5.0, 30.0}) {
+    const LocalGas gas = mmsn_gas(r_au);
+    for (double phi : {1e-4, 1e-2, 1.0}) {
+      for (int i = 0; i <= 3600; ++i) {
+        const double m = std::pow(10.0, -9.0 + 18.0 * i / 3600.0);
+        const double st = st_of(m, phi, gas);
+        const double a = radius(m, phi, kRho0Ice);
+        const double st_ep = stokes_epstein(a, phi * kRho0Ice, gas);
+        const double x = knudsen_ratio(a, gas);
+        const double re_p = particle_reynolds(a, gas_drift_speed(st, gas), gas);
+        const double rhs = st_ep * drag_regime_factor(x, re_p);
+        const bool shortcut = x < 1e-2 || re_p < kReNegligible;
+        (x < 1e-2 ? epstein : shortcut ? re_zero : newton) += 1;
+        if (!shortcut) continue;
+        ASSERT_LT(std::abs(st / rhs - 1.0),
+                  4.0 * 2.2e-16 * (1.0 + std::abs(std::log(st))))
+            << r_au << " AU, m = " << m << ", phi = " << phi << ", x = " << x
+            << ", Re_p = " << re_p;
+      }
+    }
+  }
+  EXPECT_GT(epstein, 1000);  // the scan covers all three paths
+  EXPECT_GT(re_zero, 1000);
+  EXPECT_GT(newton, 1000);
+}
+
 // ---------------------------------------------------------------- AutoDiff vs finite
 // diff --
 
@@ -381,6 +418,66 @@ TEST(SmoothSwitches, SoftMaxSoftMinLogistic) {
 // fire where the logistic is within 8.5e-17 of 0 or 1 (kLogisticSaturation). Scanned
 // across both saturation edges (to twice their distance from x0) for three widths, 8001
 // points each, double and AD.
+TEST(SmoothSwitches, LogSpaceSoftMaxAndSoftMinEqualTheLinearOnes) {
+  // ln_soft_max(ln a, ln b) = ln (a^p + b^p)^(1/p), ln_soft_min = -ln (a^-p +
+  // b^-p)^(1/p), against long double, across the saturation edge p |ln a - ln b| = 40 and
+  // both orders; AutoDiff derivative d/d ln a = a^p / (a^p + b^p) (soft_min: a^-p /
+  // (...)).
+  const double p = kSoftMaxPower;
+  int saturated = 0;
+  for (double lb : {-7.3, 0.0, 4.1}) {
+    for (int i = -3000; i <= 3000; ++i) {
+      const double la = lb + 8.0 * i / 3000.0;  // |ln a - ln b| up to 8: p |d| up to 64
+      const long double ea = std::exp(static_cast<long double>(p) * la);
+      const long double eb = std::exp(static_cast<long double>(p) * lb);
+      const long double ref_max = std::log(ea + eb) / p;
+      const long double ref_min = -std::log(1.0L / ea + 1.0L / eb) / p;
+      const double bound = 4.0 * 2.2e-16 * (1.0 + std::abs(la) + std::abs(lb));
+      const AD a(la, 2, 0), b(lb, 2, 1);
+      const AD mx = ln_soft_max(a, b), mn = ln_soft_min(a, b);
+      ASSERT_LE(std::abs(mx.value() - static_cast<double>(ref_max)), bound)
+          << la << " " << lb;
+      ASSERT_LE(std::abs(mn.value() - static_cast<double>(ref_min)), bound)
+          << la << " " << lb;
+      const double wa = static_cast<double>(ea / (ea + eb));
+      const double wa_min = static_cast<double>((1.0L / ea) / (1.0L / ea + 1.0L / eb));
+      ASSERT_LE(std::abs(mx.derivatives()(0) - wa), 1e-15);
+      ASSERT_LE(std::abs(mx.derivatives()(1) - (1.0 - wa)), 1e-15);
+      ASSERT_LE(std::abs(mn.derivatives()(0) - wa_min), 1e-15);
+      if (p * std::abs(la - lb) > 40.0) ++saturated;
+    }
+  }
+  EXPECT_GT(saturated, 3000);
+}
+
+TEST(SmoothSwitches, Log1pSeriesAndTanhStepAreExactToRoundOff) {
+  // log1p_nonneg: y - y^2/2 below 1e-8, ln y + 1/y above 1e8, log1p between; against long
+  // double over 1e-20 .. 1e20, value within 1 ulp and AutoDiff derivative 1 / (1 + y).
+  for (int i = 0; i <= 4000; ++i) {
+    const double y = std::pow(10.0, -20.0 + 40.0 * i / 4000.0);
+    const long double ref = std::log1p(static_cast<long double>(y));
+    const AD ya(y, 2, 0);
+    const AD v = log1p_nonneg(ya);
+    ASSERT_LE(std::abs(v.value() - static_cast<double>(ref)),
+              2.3e-16 * static_cast<double>(ref))
+        << y;
+    ASSERT_LE(std::abs(v.derivatives()(0) * (1.0 + y) - 1.0), 1e-15) << y;
+    EXPECT_EQ(log1p_nonneg(y), v.value());
+  }
+  // tanh_step: the same bits as (1 + tanh z) / 2 everywhere, the saturated edges included
+  for (int i = -30000; i <= 30000; ++i) {
+    const double z = 25.0 * i / 30000.0;
+    ASSERT_EQ(tanh_step(z), 0.5 * (1.0 + std::tanh(z))) << z;
+  }
+  // cbrt_of: value and derivative x^(-2/3) / 3
+  for (double x : {1e-30, 0.3, 8.0, 1e40}) {
+    const AD c = cbrt_of(AD(x, 2, 0));
+    EXPECT_EQ(c.value(), std::cbrt(x));
+    const long double ref = std::pow(static_cast<long double>(x), -2.0L / 3.0L) / 3.0L;
+    EXPECT_LT(rel_err(c.derivatives()(0), static_cast<double>(ref)), 1e-15);
+  }
+}
+
 TEST(SmoothSwitches, SaturatedLogStepEqualsTheLogistic) {
   for (double w : {0.01, 0.1, 0.3}) {
     const double k = std::log(19.0) / (w * std::log(10.0));
