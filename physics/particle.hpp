@@ -34,6 +34,8 @@ inline constexpr int kDragIterations = 6;
 //! Re_p below which f_Re = (1 + Re_p^(0.4 p) + (0.01833 Re_p)^p)^(1/p) is 1 to round-off:
 //! Re_p^3.2 < 1e-16 [-].
 inline constexpr double kReNegligible = 1e-5;
+//! ln kReNegligible.
+inline constexpr double kLnReNegligible = -11.512925464970229;
 //! C_D = 0.44 written as 24/Re_p times (this constant * Re_p) (Weidenschilling 1977) [-].
 inline constexpr double kCdNewton = 0.44 / 24.0;
 
@@ -355,11 +357,12 @@ T drag_regime_factor(const T& x, const T& re_p) {
 //!   G(u) = u - ln(St_Ep g(x, Re_p(e^u))),  u = ln St,
 //!   u <- u - G(u) / G'(u),   G' = 1 - (dln g/dln f)(dln f/dln Re)(dln dv_pg/dln St),
 //! with analytic slopes (G' lies in [0.88, 2], so the step is always well defined),
-//! starting from the Re_p = 0 law u0 = ln(St_Ep soft_max(1, x)). A fixed number of steps
-//! keeps the result a smooth, deterministic function of (m, phi) whose AutoDiff
-//! derivative converges to the implicit-function derivative (the Newton map is flat at
-//! its fixed point). Five steps reach |G| < 1e-14 from 0.3 to 100 au for 1e-15 g < m <
-//! 1e23 g, 1e-6 < phi < 1; we take 6.
+//! starting from the smaller of the Re_p = 0 law u0 = ln(St_Ep soft_max(1, x)) and the
+//! hard-branch solution (below). A bounded number of steps keeps the result a
+//! deterministic function of (m, phi), smooth to round-off, whose AutoDiff derivative
+//! converges to the implicit-function derivative (the Newton map is flat at its fixed
+//! point). Four steps reach |G| < 1e-14 from 0.05 to 300 au for 1e-15 g < m < 1e23 g,
+//! 1e-6 < phi < 1; we allow 6.
 template <class T>
 T stokes_number(const T& m, const T& phi, double rho0, const LocalGas& gas,
                 DragLaw law = DragLaw::kStokesRe, int iterations = kDragIterations) {
@@ -382,15 +385,38 @@ T stokes_number(const T& m, const T& phi, double rho0, const LocalGas& gas,
   // log1p(x^p / f_Re^p) / p: no p-th root, no soft_max (drag_regime_factor() is the same
   // function; x < 3e38 in any disk, so x^p is finite).
   const T xp = power_p<T>(x, p);
-  T u = ln_st_ep + log1p_nonneg(xp) / p;  // Re_p = 0 (Stokes) first guess
+  T u = ln_st_ep + log1p_nonneg(xp) / p;  // the Re_p = 0 law
+  // Re_p = K shape(St) with K = 2 a eta v_K / nu_mol and shape = St sqrt(4 + St^2) / (1 +
+  // St^2) <= min(2 St, 1.12) (gas_drift_speed).
+  const T ln_k = log(2.0 * a * (gas.headwind() / gas.nu_mol));
+  // Re_p < kReNegligible at the Re_p = 0 law (bounded with shape <= 2 St) makes f_Re^p =
+  // 1 + Re_p^3.2 + ... equal to 1 to round-off: that law solves G(u) = 0, and St is its
+  // value without a Newton step (no pow; most grains before the drift barrier).
+  if (value_of(ln_k) + std::numbers::ln2 + value_of(u) < kLnReNegligible) return exp(u);
+  // First guess where Re_p matters: the hard-max law f_Re = max(1, Re_p^0.4, 0.01833
+  // Re_p) with shape = min(2 St, 1), solved in closed form on each branch (St
+  // f_i(Re_p(St)) = St_Ep x rises with St, so the solution is the least of the branch
+  // solutions, and each branch's is the larger of its small- and large-St solutions);
+  // never above the Re_p = 0 law. On the fiducial run it was at most 0.17 in ln St from
+  // the smooth law's root (the p-norm corners and the shape), where the Re_p = 0 law was
+  // up to 3.1 off: the Newton solve below takes 2.9 steps on average instead of 4.1.
+  {
+    const T ln_sx = ln_st_ep + log(x);  // f_Re = 1 (Stokes)
+    const double ln2 = std::numbers::ln2;
+    const T b_small = (ln_sx - 0.4 * (ln_k + ln2)) / 1.4;  // f_Re = Re_p^0.4
+    const T b_large = ln_sx - 0.4 * ln_k;
+    const T c_small = 0.5 * (ln_sx - std::log(2.0 * kCdNewton) - ln_k);  // 0.01833 Re_p
+    const T c_large = ln_sx - std::log(kCdNewton) - ln_k;
+    const T& b = value_of(b_small) > value_of(b_large) ? b_small : b_large;
+    const T& c = value_of(c_small) > value_of(c_large) ? c_small : c_large;
+    const T& bc = value_of(b) < value_of(c) ? b : c;
+    const T& guess = value_of(bc) > value_of(ln_st_ep) ? bc : ln_st_ep;
+    if (value_of(guess) < value_of(u)) u = guess;
+  }
   for (int it = 0; it < iterations; ++it) {
     const T st = exp(u);
     const T dv = gas_drift_speed(st, gas);
     const T re_p = particle_reynolds(a, dv, gas);
-    // At the first guess (the Re_p = 0 law), Re_p < kReNegligible makes f_Re^p = 1 +
-    // Re_p^3.2 + ... equal to 1 to round-off: the guess solves G(u) = 0, and St is the
-    // law's value without a Newton step (no pow; most grains before the drift barrier).
-    if (it == 0 && value_of(re_p) < kReNegligible) return st;
     // f_Re and its log-slope share Re_p^(0.4 p) and (0.01833 Re_p)^p: computed once
     // (the same expressions as reynolds_correction() and its _log_slope()).
     const T b = pow(re_p, 0.4 * p);
@@ -402,11 +428,13 @@ T stokes_number(const T& m, const T& phi, double rho0, const LocalGas& gas,
     const T slope = dlng_dlnf * dlnf_dlnre * gas_drift_speed_log_slope(st);
     const T residual = u - ln_st_ep - log1p_nonneg(yp) / p;  // G(u)
     u = u - residual / (1.0 - slope);
-    // Once |G| < 1e-12 the next Newton step is far below the round-off of u (quadratic
-    // convergence) and the AD derivative is converged to ~|G| (the Newton map is flat at
-    // its fixed point), so stop: most cells are Epstein, converged after one step. The
-    // test is on the value, so double and AD stop at the same step and agree bit for bit.
-    if (std::abs(value_of(residual)) < 1e-12) break;
+    // Once |G| < 1e-8 this Newton step leaves an error ~|G''/2G'| G^2 < 1e-16 in u
+    // (quadratic convergence; over 0.05-300 au, 1e-15 < m < 1e23 g, 1e-6 < phi < 1 the
+    // result differs from one converged to |G| < 1e-14 by < 2e-15 (1 + |u|)), and the AD
+    // derivative is converged to ~|G| (the Newton map is flat at its fixed point), so
+    // stop. The test is on the value, so double and AD stop at the same step and agree
+    // bit for bit.
+    if (std::abs(value_of(residual)) < 1e-8) break;
   }
   return exp(u);
 }
