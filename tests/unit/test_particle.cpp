@@ -413,11 +413,6 @@ TEST(SmoothSwitches, SoftMaxSoftMinLogistic) {
   EXPECT_NEAR(s.derivatives()(1), 0.5 * std::pow(2.0, 0.125), 1e-14);
 }
 
-// The saturated log_step returns 0 or 1 without evaluating the logistic; it must agree
-// with the logistic 1 / (1 + (x0/x)^k) to round-off everywhere: the shortcut may only
-// fire where the logistic is within 8.5e-17 of 0 or 1 (kLogisticSaturation). Scanned
-// across both saturation edges (to twice their distance from x0) for three widths, 8001
-// points each, double and AD.
 TEST(SmoothSwitches, LogSpaceSoftMaxAndSoftMinEqualTheLinearOnes) {
   // ln_soft_max(ln a, ln b) = ln (a^p + b^p)^(1/p), ln_soft_min = -ln (a^-p +
   // b^-p)^(1/p), against long double, across the saturation edge p |ln a - ln b| = 40 and
@@ -478,6 +473,11 @@ TEST(SmoothSwitches, Log1pSeriesAndTanhStepAreExactToRoundOff) {
   }
 }
 
+// The saturated log_step returns 0 or 1 without evaluating the logistic; it must agree
+// with the logistic 1 / (1 + (x0/x)^k) to round-off everywhere: the shortcut may only
+// fire where the logistic is within 8.5e-17 of 0 or 1 (kLogisticSaturation). Scanned
+// across both saturation edges (to twice their distance from x0) for three widths, 8001
+// points each, double and AD.
 TEST(SmoothSwitches, SaturatedLogStepEqualsTheLogistic) {
   for (double w : {0.01, 0.1, 0.3}) {
     const double k = std::log(19.0) / (w * std::log(10.0));
