@@ -168,7 +168,8 @@ CvodeIntegrator::CvodeIntegrator(DiskModel& model, double t0, std::span<const do
 
 void CvodeIntegrator::clip_to_constraints() {
   // CVODE accepts steps whose non-negative components dip below zero by less than its
-  // error weights, but a new start rejects any: clip those round-off negatives. Done
+  // error weights, but a new start rejects any: clip those round-off negatives (only
+  // Sigma_g is constrained; Sigma_d is not, as clipping it would create dust). Done
   // at every start, the constructor's too, so that a run restarted from a checkpoint
   // (which stores the state as integrated) starts from the same bits as the run that
   // reinitialised there.
@@ -276,7 +277,7 @@ void CvodeIntegrator::advance_to(double t_out,
     t_ = t_reached;  // on a failure: the last time reached, y_ the state there
     if (flag == CV_CONSTR_FAIL)
       fail(flag,
-           "every retry of the step drove a non-negative variable (Sigma_d or Sigma_g) "
+           "every retry of the step drove a non-negative variable (Sigma_g) "
            "below zero; a tighter solver.rtol may get past it");
     if (flag < 0) fail(flag, "");
     // Steps below the round-off of t (CVODE warns "t + h = t" and goes on) do not

@@ -280,7 +280,7 @@ std::vector<KeySpec> make_keys() {
       real("solver.rtol", "1e-6", "", "CVODE relative tolerance", 1e-14, false, 0.1,
            false),
       positive(
-          "solver.atol_sigma", "1e-12", "",
+          "solver.atol_sigma", "1e-8", "",
           "absolute tolerance of Sigma_d and Sigma_g, relative to the initial maximum "
           "of Sigma (so it scales with the scene)"),
       integer("solver.max_steps", "2000000", "limit on the total number of CVODE steps",

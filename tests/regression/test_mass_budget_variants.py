@@ -2,12 +2,12 @@
 a radially varying St (both to 1e-12), and loose tolerances, rtol = 1e-3 and (fiducial)
 1e-2.
 
-At rtol = 1e-3 the budget is not exact to round-off: CVODE accepts steps whose Sigma_d
-dips below zero by less than its error weights, and the restart of CVODE at every
-snapshot (solver.reinit_at_snapshots) clips those negatives to zero, adding that much
-dust: an error of the size of the absolute tolerance (8e-11 relative with the default
-solver.atol_sigma = 1e-12). The variant therefore sets atol_sigma = 1e-14 and is checked
-against the issue's 1e-10 (measured: 1e-12), not the 1e-12 of the other runs. (It runs
+At rtol = 1e-3 CVODE accepts steps whose Sigma_d dips below zero by up to about its
+absolute tolerance (solver.atol_sigma = 1e-8 of the largest initial Sigma_d). Sigma_d
+carries no >= 0 constraint, so the restart of CVODE at every snapshot
+(solver.reinit_at_snapshots) keeps those negatives and the budget stays exact to
+round-off; with the constraint the restart clipped them to zero, adding that much dust
+(8e-11 relative at atol_sigma = 1e-12, the earlier default). (It runs
 compact_fragmentation: the fiducial scene at rtol = 1e-3 takes minutes.)
 """
 import numpy as np
@@ -26,7 +26,7 @@ VARIANTS = [
 
 
 def check_loose(args, c, label, scene, sets, name):
-    """Runs `scene` with `sets` (a loose tolerance) and checks its budget to 1e-10 at every
+    """Runs `scene` with `sets` (a loose tolerance) and checks its budget to 1e-12 at every
     snapshot."""
     out = f"{args.workdir}/{name}.h5"
     run(args.exe, scene, out, sets)
@@ -34,7 +34,7 @@ def check_loose(args, c, label, scene, sets, name):
     m = s["m_dust"] + s["m_out_inner"] + s["m_sublimated"] + s["m_pl_coag"] + s["m_pl_si"]
     err = np.max(np.abs(m / m[0] - 1))
     print(f"{label}: max budget error {err:.1e}")
-    c.check(err < 1e-10, f"{label}: budget closes to 1e-10 ({err:.1e})")
+    c.check(err < 1e-12, f"{label}: budget closes to 1e-12 ({err:.1e})")
 
 
 def main():
@@ -43,7 +43,7 @@ def main():
     check_budgets(VARIANTS, args, c)
     check_loose(args, c, "compact_fragmentation, rtol 1e-3",
                 "params/compact_fragmentation.toml",
-                ["solver.rtol=1e-3", "solver.atol_sigma=1e-14"], "loose")
+                ["solver.rtol=1e-3"], "loose")
     # Sigma_pl is out of CVODE's error test; were it still constrained to be >= 0, CVODE
     # would clip its negative excursions to zero at any size and lose that mass: 2.4e-8
     # on fiducial at rtol 1e-2 (2d99b3b), where Newton iterates of drained cells go
