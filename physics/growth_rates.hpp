@@ -110,6 +110,21 @@ struct ParticleRates {
   T dlnphi_dt;  //!< [s^-1]
 };
 
+//! ln x for an x that is a constant of the run (a species' or an option's), remembered
+//! for the last x seen at call site `Site`: particle_rates would otherwise take two such
+//! logs per cell and call. One entry per site suffices: cells are visited in radial
+//! order, so the species changes once per sweep (at the snow line). The same bits as
+//! std::log(x).
+template <int Site>
+double log_of_constant(double x) {
+  thread_local double last_x = -1.0, last_ln = 0.0;  // -1: no log taken yet
+  if (x != last_x) {
+    last_ln = std::log(x);
+    last_x = x;
+  }
+  return last_ln;
+}
+
 //! Stokes number of the small projectiles: fixed, or that of a compact monomer.
 inline double small_projectile_st(const GrowthOptions& o, const Species& sp,
                                   const LocalGas& gas) {
@@ -203,11 +218,11 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
     if (o.self_gravity) {  // spec §4.3, Kataoka et al. 2013b: P_grav = P_c
       // phi_grav = (G m0^2 / (pi a0 E_roll))^(3/5) N^(2/5)
       const double ln_c =
-          0.6 * std::log(units::kG * sp.m0 * sp.m0 / (kPi * sp.a0 * sp.e_roll));
+          0.6 * log_of_constant<0>(units::kG * sp.m0 * sp.m0 / (kPi * sp.a0 * sp.e_roll));
       const T ln_grav = ln_c + 0.4 * ln_nmono;
       ln_floor = o.gas_compaction ? ln_soft_max(ln_floor, ln_grav) : ln_grav;
     }
-    ln_floor = ln_soft_min(ln_floor, T(std::log(o.phi_max)));
+    ln_floor = ln_soft_min(ln_floor, T(log_of_constant<1>(o.phi_max)));
     // spec §4.4: relax up to the floor on t_relax = kRelaxFraction min(t_grow, t_cap),
     // with t_cap = kRelaxCapOmega/Omega where the spec has 1/Omega (see kRelaxCapOmega).
     const T rate_grow = growth + 1e-30;

@@ -40,6 +40,7 @@ using panoptic::physics::ice_material;
 using panoptic::physics::LocalGas;
 using panoptic::physics::particle_rates;
 using panoptic::physics::ParticleRates;
+using panoptic::physics::silicate_material;
 using panoptic::physics::Species;
 using panoptic::physics::stokes_number;
 namespace units = panoptic::units;
@@ -595,6 +596,42 @@ TEST(GrowthCompactionFloor, SpecDerivedMagnitudes) {
     EXPECT_GT(f, c.lo) << c.what;
     EXPECT_LT(f, c.hi) << c.what;
   }
+}
+
+TEST(GrowthCompactionFloor, RememberedLogsFollowTheSpeciesAndOptions) {
+  // particle_rates remembers the logs of its per-species constant (self-gravity floor)
+  // and of phi_max (log_of_constant): alternating species and phi_max must give, bit for
+  // bit, what a first evaluation gives, and the remembered log is std::log's.
+  for (double x : {2.0, 3.0, 2.0, 0.5, 0.5, 1e-300})
+    EXPECT_EQ(panoptic::physics::log_of_constant<7>(x), std::log(x)) << x;
+  Species ice = ice_species(), sil = ice;
+  const ContactProperties c = contact_properties(silicate_material());
+  sil.a0 = silicate_material().a0;
+  sil.rho0 = silicate_material().rho0;
+  sil.m0 = c.m0;
+  sil.e_roll = c.e_roll;
+  GrowthOptions o = plain_options(true), o_low = o;
+  o_low.phi_max = 0.3;
+  const LocalGas gas = mmsn_gas(5.0);
+  // m = 1e19 g at phi = 0.05, below the floor: phi_grav(ice) = 0.16 x 10^0.4 = 0.40 at
+  // 1e19 g, capped by phi_max = 0.3 and not by 0.5, so both remembered logs enter the
+  // push
+  const double m = 1e19, phi = 0.05;
+  struct Call {
+    const Species* sp;
+    const GrowthOptions* o;
+  };
+  const std::vector<Call> calls = {{&ice, &o},     {&sil, &o}, {&ice, &o_low},
+                                   {&sil, &o_low}, {&ice, &o}, {&sil, &o}};
+  std::vector<double> first(calls.size());
+  for (std::size_t k = 0; k < calls.size(); ++k)
+    first[k] = rates_at(1.0, m, phi, gas, *calls[k].sp, *calls[k].o).dlnphi_dt;
+  // reversed order: every call now follows a different predecessor
+  for (std::size_t k = calls.size(); k-- > 0;)
+    EXPECT_EQ(rates_at(1.0, m, phi, gas, *calls[k].sp, *calls[k].o).dlnphi_dt, first[k])
+        << k;
+  EXPECT_NE(first[0], first[1]);  // the species' floors differ
+  EXPECT_NE(first[0], first[2]);  // phi_max matters here
 }
 
 // ------------------------------------------------------- continuity of smoothed switches
