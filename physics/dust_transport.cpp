@@ -26,8 +26,10 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
   // it, creating that much dust; with solver.atol_sigma = 1e-8 the LBP test's dust
   // budget was off by 2.7e-8 (README, Performance). The transport and the sinks are
   // linear in Sigma_d with non-negative exact solutions, so its negative excursions are
-  // integration error held to the absolute tolerance by the error test, and every
-  // law reads Sigma_d through the codec's floor (ParticleCodec::eps_sigma).
+  // integration error held to the absolute tolerance by the error test. The decoded m
+  // and phi read Sigma_d through the codec's floor (ParticleCodec::eps_sigma), the SI
+  // triggers through a smooth positive part (Planetesimals::cell_rates); Newton iterates
+  // went negative there before, so these paths were already exercised.
   slot_ = layout.add_cell_var(
       {"sigma_d", "g cm^-2", "dust surface density", sigma_scale, false});
   const double area_total =
