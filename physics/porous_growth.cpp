@@ -91,18 +91,23 @@ LocalGas CellGas::scaled(int cell, double sigma_g) const {
   return g;
 }
 
-double GrowthStokes::St(int cell, const double* yc) const {
-  if (cache_st_.empty()) {
-    cache_st_.assign(species_.size(), 0.0);
+const GrowthStokes::Particle& GrowthStokes::particle(int cell, const double* yc) const {
+  if (cache_.empty()) {
+    cache_.assign(species_.size(), Particle{});
     cache_key_.assign(species_.size(), {-1.0, -1.0, -1.0, -1.0});
   }
   const auto key = cell_key(codec_, gas_.evolves_slot(), yc);
-  if (key == cache_key_[cell]) return cache_st_[cell];
-  const double st = physics::stokes_number(codec_.mass(cell, yc), codec_.phi(yc),
-                                           species_[cell].rho0, gas_.at(cell, yc), law_);
+  Particle& p = cache_[cell];
+  if (key == cache_key_[cell]) return p;
+  p.m = codec_.mass(cell, yc);
+  p.phi = codec_.phi(yc);
+  p.st = physics::stokes_number(p.m, p.phi, species_[cell].rho0, gas_.at(cell, yc), law_);
   cache_key_[cell] = key;
-  cache_st_[cell] = st;
-  return st;
+  return p;
+}
+
+double GrowthStokes::St(int cell, const double* yc) const {
+  return particle(cell, yc).st;
 }
 
 AD GrowthStokes::St(int cell, const AD* yc) const {
@@ -131,6 +136,7 @@ PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const Cell
       codec_(codec),
       gas_(gas),
       stokes_(stokes),
+      growth_stokes_(dynamic_cast<const GrowthStokes*>(&stokes)),
       species_(species),
       opt_(options) {
   codec.qm_slot =
@@ -147,6 +153,13 @@ PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const Cell
 
 template <class T>
 physics::ParticleRates<T> PorousGrowth::compute_rates(int cell, const T* yc) const {
+  if constexpr (std::is_same_v<T, double>) {
+    if (growth_stokes_ != nullptr) {  // m, phi, St decoded once per cell state
+      const GrowthStokes::Particle& p = growth_stokes_->particle(cell, yc);
+      return physics::particle_rates(yc[codec_.sigma_slot], p.m, p.phi, p.st,
+                                     gas_.at(cell, yc), species_[cell], opt_);
+    }
+  }
   return physics::particle_rates(yc[codec_.sigma_slot], codec_.mass(cell, yc),
                                  codec_.phi(yc), stokes_.St(cell, yc), gas_.at(cell, yc),
                                  species_[cell], opt_);

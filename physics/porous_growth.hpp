@@ -73,6 +73,12 @@ class GrowthStokes : public StokesModel {
   //! Cached per cell: within one RHS evaluation the transport asks for each cell's St
   //! twice and the growth rates once; the cache is keyed by the cell's state values.
   double St(int cell, const double* ycell) const override;
+  //! m, phi and St of a cell, cached together: the growth rates of the same state reuse
+  //! the decoded m and phi (two exp per cell and RHS) instead of decoding them again.
+  struct Particle {
+    double m = 0.0, phi = 0.0, st = 0.0;
+  };
+  const Particle& particle(int cell, const double* ycell) const;
   //! The same for the Jacobian: St and its gradient with respect to (Sigma_d, Q_m,
   //! Q_phi) are computed once per cell state and chained onto the caller's seeds
   //! (ad_chain), instead of one AD Newton solve per use (four per cell and Jacobian).
@@ -81,7 +87,7 @@ class GrowthStokes : public StokesModel {
  private:
   static constexpr int kKey = 4;
   mutable std::vector<std::array<double, kKey>> cache_key_;
-  mutable std::vector<double> cache_st_;
+  mutable std::vector<Particle> cache_;
   struct AdEntry {
     std::array<double, kKey> key{-1.0, -1.0, -1.0, -1.0};
     double st = 0.0;
@@ -130,6 +136,9 @@ class PorousGrowth : public PhysicsModule {
   const ParticleCodec& codec_;
   const CellGas& gas_;
   const StokesModel& stokes_;
+  //! stokes_ when it is the growth model's (it always is in a scene): its cache holds
+  //! the decoded m and phi of the state the rates are asked for
+  const GrowthStokes* growth_stokes_ = nullptr;
   const std::vector<physics::Species>& species_;
   physics::GrowthOptions opt_;
   static constexpr int kKey = 4;  // Sigma_d, Q_m, Q_phi, Sigma_g: all the rates depend on
