@@ -134,15 +134,16 @@ inline double small_projectile_st(const GrowthOptions& o, const Species& sp,
 
 //! The rates of the mass-dominating particle (m [g], phi, Stokes number St from
 //! stokes_number(), spec §2) in a cell with dust surface density sigma_d [g cm^-2].
+//! `a_known`, if given, is radius(m, phi, sp.rho0), already computed by the caller.
 template <class T>
 ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, const T& St,
                                 const LocalGas& gas, const Species& sp,
-                                const GrowthOptions& o) {
+                                const GrowthOptions& o, const T* a_known = nullptr) {
   using std::pow;
   using std::sqrt;
   using units::kPi;
   ParticleRates<T> r;
-  r.a = radius(m, phi, sp.rho0);  // spec §2
+  r.a = a_known != nullptr ? *a_known : radius(m, phi, sp.rho0);  // spec §2
   r.St = St;
   r.h_d = dust_scale_height(r.St, gas);  // spec §2
   r.dv = dv_pair(r.St, m, gas, o.eps);   // spec §3

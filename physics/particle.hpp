@@ -360,13 +360,15 @@ T drag_regime_factor(const T& x, const T& re_p) {
 //! deterministic function of (m, phi), smooth to round-off, whose AutoDiff derivative
 //! converges to the implicit-function derivative (the Newton map is flat at its fixed
 //! point). No call of the fiducial run took more than four steps; we allow 6.
+//! stokes_number_of_radius() is the same law for a known radius a = radius(m, phi, rho0)
+//! (the growth model's St cache keeps a for the rates; the same bits).
 template <class T>
-T stokes_number(const T& m, const T& phi, double rho0, const LocalGas& gas,
-                DragLaw law = DragLaw::kStokesRe, int iterations = kDragIterations) {
+T stokes_number_of_radius(const T& a, const T& phi, double rho0, const LocalGas& gas,
+                          DragLaw law = DragLaw::kStokesRe,
+                          int iterations = kDragIterations) {
   using std::exp;
   using std::log;
   using std::pow;
-  const T a = radius(m, phi, rho0);
   const T rho_int = internal_density(phi, rho0);
   const T st_ep = stokes_epstein(a, rho_int, gas);  // spec §2; Epstein (1924)
   if (law == DragLaw::kEpstein) return st_ep;
@@ -434,6 +436,13 @@ T stokes_number(const T& m, const T& phi, double rho0, const LocalGas& gas,
     if (std::abs(value_of(residual)) < 1e-8) break;
   }
   return exp(u);
+}
+
+//! Stokes number of an aggregate of mass m [g] and filling factor phi (above).
+template <class T>
+T stokes_number(const T& m, const T& phi, double rho0, const LocalGas& gas,
+                DragLaw law = DragLaw::kStokesRe, int iterations = kDragIterations) {
+  return stokes_number_of_radius(radius(m, phi, rho0), phi, rho0, gas, law, iterations);
 }
 
 // ---------------------------------------------------------------------------------------------

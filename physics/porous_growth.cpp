@@ -101,7 +101,9 @@ const GrowthStokes::Particle& GrowthStokes::particle(int cell, const double* yc)
   if (key == cache_key_[cell]) return p;
   p.m = codec_.mass(cell, yc);
   p.phi = codec_.phi(yc);
-  p.st = physics::stokes_number(p.m, p.phi, species_[cell].rho0, gas_.at(cell, yc), law_);
+  p.a = physics::radius(p.m, p.phi, species_[cell].rho0);
+  p.st = physics::stokes_number_of_radius(p.a, p.phi, species_[cell].rho0,
+                                          gas_.at(cell, yc), law_);
   cache_key_[cell] = key;
   return p;
 }
@@ -154,10 +156,10 @@ PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const Cell
 template <class T>
 physics::ParticleRates<T> PorousGrowth::compute_rates(int cell, const T* yc) const {
   if constexpr (std::is_same_v<T, double>) {
-    if (growth_stokes_ != nullptr) {  // m, phi, St decoded once per cell state
+    if (growth_stokes_ != nullptr) {  // m, phi, a, St computed once per cell state
       const GrowthStokes::Particle& p = growth_stokes_->particle(cell, yc);
       return physics::particle_rates(yc[codec_.sigma_slot], p.m, p.phi, p.st,
-                                     gas_.at(cell, yc), species_[cell], opt_);
+                                     gas_.at(cell, yc), species_[cell], opt_, &p.a);
     }
   }
   return physics::particle_rates(yc[codec_.sigma_slot], codec_.mass(cell, yc),

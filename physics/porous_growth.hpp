@@ -73,10 +73,11 @@ class GrowthStokes : public StokesModel {
   //! Cached per cell: within one RHS evaluation the transport asks for each cell's St
   //! twice and the growth rates once; the cache is keyed by the cell's state values.
   double St(int cell, const double* ycell) const override;
-  //! m, phi and St of a cell, cached together: the growth rates of the same state reuse
-  //! the decoded m and phi (two exp per cell and RHS) instead of decoding them again.
+  //! m, phi, radius and St of a cell, cached together: the growth rates of the same
+  //! state reuse the decoded m and phi and the radius (two exp and a cbrt per cell and
+  //! RHS) instead of computing them again.
   struct Particle {
-    double m = 0.0, phi = 0.0, st = 0.0;
+    double m = 0.0, phi = 0.0, a = 0.0, st = 0.0;
   };
   const Particle& particle(int cell, const double* ycell) const;
   //! The same for the Jacobian: St and its gradient with respect to (Sigma_d, Q_m,
