@@ -131,14 +131,13 @@ AD GrowthStokes::St(int cell, const AD* yc) const {
 }
 
 PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const CellGas& gas,
-                           const StokesModel& stokes,
+                           const GrowthStokes& stokes,
                            const std::vector<physics::Species>& species,
                            physics::GrowthOptions options, double sigma_scale)
     : layout_(layout),
       codec_(codec),
       gas_(gas),
       stokes_(stokes),
-      growth_stokes_(dynamic_cast<const GrowthStokes*>(&stokes)),
       species_(species),
       opt_(options) {
   codec.qm_slot =
@@ -155,16 +154,15 @@ PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const Cell
 
 template <class T>
 physics::ParticleRates<T> PorousGrowth::compute_rates(int cell, const T* yc) const {
-  if constexpr (std::is_same_v<T, double>) {
-    if (growth_stokes_ != nullptr) {  // m, phi, a, St computed once per cell state
-      const GrowthStokes::Particle& p = growth_stokes_->particle(cell, yc);
-      return physics::particle_rates(yc[codec_.sigma_slot], p.m, p.phi, p.st,
-                                     gas_.at(cell, yc), species_[cell], opt_, &p.a);
-    }
+  if constexpr (std::is_same_v<T, double>) {  // m, phi, a, St computed once per state
+    const GrowthStokes::Particle& p = stokes_.particle(cell, yc);
+    return physics::particle_rates(yc[codec_.sigma_slot], p.m, p.phi, p.st,
+                                   gas_.at(cell, yc), species_[cell], opt_, &p.a);
+  } else {
+    return physics::particle_rates(yc[codec_.sigma_slot], codec_.mass(cell, yc),
+                                   codec_.phi(yc), stokes_.St(cell, yc),
+                                   gas_.at(cell, yc), species_[cell], opt_);
   }
-  return physics::particle_rates(yc[codec_.sigma_slot], codec_.mass(cell, yc),
-                                 codec_.phi(yc), stokes_.St(cell, yc), gas_.at(cell, yc),
-                                 species_[cell], opt_);
 }
 
 const physics::ParticleRates<double>& PorousGrowth::cell_rates(int cell,

@@ -105,7 +105,7 @@ class PorousGrowth : public PhysicsModule {
  public:
   //! Registers Q_m and, with porosity, Q_phi; fills their slots into `codec`.
   PorousGrowth(StateLayout& layout, ParticleCodec& codec, const CellGas& gas,
-               const StokesModel& stokes, const std::vector<physics::Species>& species,
+               const GrowthStokes& stokes, const std::vector<physics::Species>& species,
                physics::GrowthOptions options, double sigma_scale);
 
   std::string_view name() const override { return "porous_growth"; }
@@ -136,10 +136,9 @@ class PorousGrowth : public PhysicsModule {
   const StateLayout& layout_;
   const ParticleCodec& codec_;
   const CellGas& gas_;
-  const StokesModel& stokes_;
-  //! stokes_ when it is the growth model's (it always is in a scene): its cache holds
-  //! the decoded m and phi of the state the rates are asked for
-  const GrowthStokes* growth_stokes_ = nullptr;
+  //! St of the growth model's particles; its cache also holds the decoded m, phi and
+  //! radius of the state the rates are asked for (GrowthStokes::particle)
+  const GrowthStokes& stokes_;
   const std::vector<physics::Species>& species_;
   physics::GrowthOptions opt_;
   static constexpr int kKey = 4;  // Sigma_d, Q_m, Q_phi, Sigma_g: all the rates depend on
