@@ -9,32 +9,27 @@
 #include <vector>
 
 #include "src/config.hpp"
-#include "src/cvode_integrator.hpp"
 #include "src/disk_model.hpp"
 #include "src/simulation.hpp"
+#include "tests/unit/evolved_state.hpp"
 
 namespace panoptic {
 namespace {
-
-std::vector<double> state_at_300_yr(const Config& cfg) {
-  Simulation sim(cfg);
-  CvodeIntegrator cvode(sim.model(), 0.0, sim.initial_state(), sim.integrator_options());
-  cvode.advance_to(300.0 * 3.156e7);  // growing, compacting, converting cells
-  return {cvode.state().begin(), cvode.state().end()};
-}
 
 TEST(CellCaches, RhsAfterAnotherStateEqualsAFreshModels) {
   const std::string file = std::string(PANOPTIC_SOURCE_DIR) + "/params/fiducial.toml";
   const std::vector<std::string> sets{"grid.n_cells=40"};
   const Config cfg = load_scene(file, sets);
-  const std::vector<double> y = state_at_300_yr(cfg);
-
-  Simulation fresh(cfg);
+  Simulation evolving(cfg);
+  const std::vector<double> y =
+      evolved_state(evolving, 300.0);  // growing, converting cells
+  // a new model: the caches of `evolving` hold the states CVODE visited
+  Simulation never_used(cfg);
   std::vector<double> f_fresh(y.size());
-  fresh.model().rhs(0.0, y, f_fresh);
+  never_used.model().rhs(0.0, y, f_fresh);
 
   // another state: every cell's particle changes (Q_m and Q_phi scaled), Sigma_d too
-  const auto& L = fresh.model().layout();
+  const auto& L = evolving.model().layout();
   std::vector<double> y2 = y;
   for (long i = 0; i < L.size(); ++i)
     if (L.cell_of(i) >= 0) y2[i] *= 1.01;

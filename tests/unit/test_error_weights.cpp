@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "src/config.hpp"
-#include "src/cvode_integrator.hpp"
 #include "src/disk_model.hpp"
 #include "src/simulation.hpp"
 #include "src/state_layout.hpp"
+#include "tests/unit/evolved_state.hpp"
 
 namespace panoptic {
 namespace {
@@ -27,9 +27,7 @@ void check_booked_out_of_error_test(bool gas_evolves) {
       "grid.n_cells=40", "solver.atol_sigma=1e-11",
       gas_evolves ? "gas.evolve=true" : "gas.evolve=false"};
   Simulation sim(load_scene(file, sets));
-  CvodeIntegrator cvode(sim.model(), 0.0, sim.initial_state(), sim.integrator_options());
-  cvode.advance_to(300.0 * 3.156e7);  // growing, compacting, converting cells
-  std::vector<double> y(cvode.state().begin(), cvode.state().end());
+  std::vector<double> y = evolved_state(sim, 300.0);  // growing, compacting, converting
   const auto& L = sim.model().layout();
   const auto opt = sim.integrator_options();
 

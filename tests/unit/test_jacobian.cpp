@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "src/config.hpp"
-#include "src/cvode_integrator.hpp"
 #include "src/disk_model.hpp"
 #include "src/simulation.hpp"
+#include "tests/unit/evolved_state.hpp"
 
 using namespace panoptic;
 
@@ -250,9 +250,7 @@ TEST(Jacobian, FiducialStateMidRun) {
   const std::string file = std::string(PANOPTIC_SOURCE_DIR) + "/params/fiducial.toml";
   const std::vector<std::string> sets{"grid.n_cells=100"};
   Simulation sim(load_scene(file, sets));
-  CvodeIntegrator cvode(sim.model(), 0.0, sim.initial_state(), sim.integrator_options());
-  cvode.advance_to(1e3 * 3.156e7);
-  const std::vector<double> y(cvode.state().begin(), cvode.state().end());
+  const std::vector<double> y = evolved_state(sim, 1e3);
   const auto c = compare_with_fd(sim, y);
   const auto& L = sim.model().layout();
   EXPECT_LT(c.max_rel_err, 1e-6)
@@ -268,9 +266,7 @@ TEST(DiskModelActive, SplitModulesSumToTheWholeModel) {
   const std::string file = std::string(PANOPTIC_SOURCE_DIR) + "/params/fiducial.toml";
   const std::vector<std::string> sets{"grid.n_cells=60"};
   Simulation sim(load_scene(file, sets));
-  CvodeIntegrator cvode(sim.model(), 0.0, sim.initial_state(), sim.integrator_options());
-  cvode.advance_to(300.0 * 3.156e7);  // growing, compacting, converting cells
-  const std::vector<double> y(cvode.state().begin(), cvode.state().end());
+  const std::vector<double> y = evolved_state(sim, 300.0);  // growing, converting cells
   DiskModel& model = sim.model();
   const auto n = y.size();
   const auto nnz = static_cast<std::size_t>(model.pattern().nnz());
