@@ -14,6 +14,8 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspa
 
 from postprocess.reader import load_run  # noqa: E402
 
+import numpy as np  # noqa: E402
+
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
@@ -38,6 +40,16 @@ def run(exe, scene, out, sets=(), expect=0):
         print(p.stderr)
         raise SystemExit(f"panoptic exited with {p.returncode}, expected {expect}")
     return p
+
+
+def budget_error(snapshots):
+    """Largest relative error of the dust mass budget over the snapshots: grid + through
+    r_in + sublimated + planetesimals (the channels that are on) against the first."""
+    m = snapshots["m_dust"] + snapshots["m_out_inner"] + snapshots["m_sublimated"]
+    for ch in ("m_pl_coag", "m_pl_si"):
+        if ch in snapshots:
+            m = m + snapshots[ch]
+    return float(np.max(np.abs(m / m[0] - 1)))
 
 
 class Checks:

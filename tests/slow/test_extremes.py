@@ -36,7 +36,7 @@ import tomllib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                 "regression"))
-from common import REPO, load_run  # noqa: E402
+from common import REPO, budget_error, load_run  # noqa: E402
 
 import numpy as np  # noqa: E402
 
@@ -153,11 +153,7 @@ def check_output(path, t_end_yr):
     neg = np.min(sd / np.maximum(np.max(np.abs(sd), axis=1, keepdims=True), 1e-300))
     if neg < -NEG_TOL:
         problems.append(f"Sigma_d down to {neg:.2g} of the max")
-    m = snaps["m_dust"] + snaps["m_out_inner"] + snaps["m_sublimated"]
-    for ch in ("m_pl_coag", "m_pl_si"):
-        if ch in snaps:
-            m = m + snaps[ch]
-    err = float(np.max(np.abs(m / m[0] - 1)))
+    err = budget_error(snaps)
     if not err <= BUDGET_TOL:
         problems.append(f"budget error {err:.2g}")
     return problems, err, int(run.solver.get("nst", -1))
