@@ -28,18 +28,24 @@ def parse_args():
     return args
 
 
-def run(exe, scene, out, sets=(), expect=0):
-    """Runs `panoptic run scene --set ... -o out --overwrite`; returns the CompletedProcess."""
-    cmd = [exe, "run", os.path.join(REPO, scene), "-o", out, "--overwrite"]
-    for s in sets:
-        cmd += ["--set", s]
-    p = subprocess.run(cmd, capture_output=True, text=True)
+def run_checked(cmd, expect=0, env=None):
+    """Runs cmd; returns the CompletedProcess. Raises SystemExit, printing the command and
+    its output, when the exit code is not `expect` (None: any)."""
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
     if expect is not None and p.returncode != expect:
         print(" ".join(cmd))
         print(p.stdout)
         print(p.stderr)
-        raise SystemExit(f"panoptic exited with {p.returncode}, expected {expect}")
+        raise SystemExit(f"the command above exited with {p.returncode}, expected {expect}")
     return p
+
+
+def run(exe, scene, out, sets=(), expect=0):
+    """Runs `panoptic run scene --set ... -o out --overwrite` (run_checked)."""
+    cmd = [exe, "run", os.path.join(REPO, scene), "-o", out, "--overwrite"]
+    for s in sets:
+        cmd += ["--set", s]
+    return run_checked(cmd, expect)
 
 
 def budget_error(snapshots):

@@ -11,7 +11,7 @@ os.environ["HDF5_USE_FILE_LOCKING"] = "FALSE"
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 
-from common import REPO  # noqa: E402
+from common import REPO, run_checked  # noqa: E402
 
 EXIT_STOPPED = 75  # panoptic's exit code for "stopped, restart from the checkpoint"
 
@@ -23,13 +23,7 @@ def panoptic(exe, scene, *args, sets=(), expect=0):
     cmd = [exe, "run", os.path.join(REPO, scene), *args]
     for s in sets:
         cmd += ["--set", s]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if expect is not None and p.returncode != expect:
-        print(" ".join(cmd))
-        print(p.stdout)
-        print(p.stderr)
-        raise SystemExit(f"panoptic exited with {p.returncode}, expected {expect}")
-    return p
+    return run_checked(cmd, expect)
 
 
 def checkpoint_of(out):

@@ -1,12 +1,11 @@
 """Shared helpers of the scan tests (test_scan_*.py): write a scan file of a tiny
 reduced fiducial scene, run `panoptic scan`, read DIR/summary.h5."""
 import os
-import subprocess
 
 import h5py
 import numpy as np
 
-from common import REPO
+from common import REPO, run_checked
 
 # The fiducial physics (growth, porosity, planetesimals, snow line) on 32 cells to 300 yr:
 # about 0.2-0.5 s a run, with planetesimals formed in most runs.
@@ -34,13 +33,7 @@ def scan(exe, scan_file, out, *opts, mpi=None, expect=0, env=None):
     e.update({"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"})
     if env:
         e.update(env)
-    p = subprocess.run(cmd, capture_output=True, text=True, env=e)
-    if expect is not None and p.returncode != expect:
-        print(" ".join(cmd))
-        print(p.stdout)
-        print(p.stderr)
-        raise SystemExit(f"panoptic scan exited with {p.returncode}, expected {expect}")
-    return p
+    return run_checked(cmd, expect, env=e)
 
 
 def summary(out):

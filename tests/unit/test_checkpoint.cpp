@@ -21,6 +21,7 @@
 #include "src/disk_model.hpp"
 #include "src/error.hpp"
 #include "src/units.hpp"
+#include "tests/unit/robertson.hpp"
 
 using namespace panoptic;
 namespace fs = std::filesystem;
@@ -372,42 +373,6 @@ TEST(CheckpointRestart, ScheduleBySnapshotsAndWallClock) {
 // ---------------------------------------------------------------------------------------
 // What restarts rest on: CVodeReInit at t is a new CVODE at t, bit for bit.
 
-class Robertson : public PhysicsModule {
- public:
-  explicit Robertson(StateLayout& layout) {
-    for (const char* n : {"y1", "y2", "y3"})
-      layout.add_global_var({n, "", "", 1.0, true});
-  }
-  std::string_view name() const override { return "robertson"; }
-  void declare_pattern(PatternBuilder& p) const override {
-    for (long i = 0; i < 3; ++i)
-      for (long j = 0; j < 3; ++j) p.add(i, j);
-  }
-  void add_rhs(double, std::span<const double> y, std::span<double> f) const override {
-    f[0] += -0.04 * y[0] + 1e4 * y[1] * y[2];
-    f[2] += 3e7 * y[1] * y[1];
-    f[1] += 0.04 * y[0] - 1e4 * y[1] * y[2] - 3e7 * y[1] * y[1];
-  }
-  void add_jacobian(double, std::span<const double> y,
-                    JacobianValues& jac) const override {
-    jac.add(0, 0, -0.04);
-    jac.add(0, 1, 1e4 * y[2]);
-    jac.add(0, 2, 1e4 * y[1]);
-    jac.add(1, 0, 0.04);
-    jac.add(1, 1, -1e4 * y[2] - 6e7 * y[1]);
-    jac.add(1, 2, -1e4 * y[1]);
-    jac.add(2, 1, 6e7 * y[1]);
-  }
-};
-
-std::unique_ptr<DiskModel> robertson() {
-  auto layout = std::make_shared<StateLayout>(0);
-  std::vector<std::unique_ptr<PhysicsModule>> modules;
-  modules.push_back(std::make_unique<Robertson>(*layout));
-  layout->freeze();
-  return std::make_unique<DiskModel>(layout, std::move(modules));
-}
-
 IntegratorOptions robertson_options() {
   IntegratorOptions o;
   o.rtol = 1e-6;
@@ -418,7 +383,7 @@ IntegratorOptions robertson_options() {
 TEST(CheckpointRestart, ReinitEqualsAFreshIntegratorBitForBit) {
   const std::vector<double> y0 = {1.0, 0.0, 0.0};
   const std::vector<double> times = {0.0, 0.4, 4.0, 40.0, 400.0, 4e3, 4e4};
-  auto model = robertson();
+  auto model = robertson_model();
   // The uninterrupted run, reinitialised at every output time.
   CvodeIntegrator straight(*model, 0.0, y0, robertson_options());
   std::vector<std::vector<double>> states;
@@ -430,7 +395,7 @@ TEST(CheckpointRestart, ReinitEqualsAFreshIntegratorBitForBit) {
   }
   // Restarts from each output time with a new integrator.
   for (std::size_t r = 1; r + 1 < times.size(); ++r) {
-    auto model2 = robertson();
+    auto model2 = robertson_model();
     CvodeIntegrator restarted(*model2, times[r], states[r - 1], robertson_options());
     for (std::size_t k = r + 1; k < times.size(); ++k) {
       restarted.advance_to(times[k]);

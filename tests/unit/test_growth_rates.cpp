@@ -25,6 +25,7 @@
 #include "physics/relative_velocity.hpp"
 #include "src/autodiff.hpp"
 #include "src/units.hpp"
+#include "tests/unit/mmsn_gas.hpp"
 
 namespace {
 
@@ -38,8 +39,10 @@ using panoptic::physics::ErosionModel;
 using panoptic::physics::GrowthOptions;
 using panoptic::physics::ice_material;
 using panoptic::physics::LocalGas;
+using panoptic::physics::mmsn_gas;
 using panoptic::physics::particle_rates;
 using panoptic::physics::ParticleRates;
+using panoptic::physics::rel_err;
 using panoptic::physics::silicate_material;
 using panoptic::physics::Species;
 using panoptic::physics::stokes_number;
@@ -56,28 +59,6 @@ constexpr double kOmega = 1.780976118388187e-08;     // [s^-1]
 constexpr double kSigmaG = 152.0526224699857;        // [g cm^-2]
 constexpr double kSigmaD = 0.01 * kSigmaG;           // Z = 0.01 (spec §1.7)
 constexpr double kThreshold = 2.131834550635301e-9;  // 3 b E_roll, b = 0.15 [erg]
-
-//! MMSN midplane gas at r_au written out from the spec formulas (§1.2-1.6), as in
-//! test_particle.cpp: Sigma = 1700 r^-1.5, T = 280 r^-0.5, mu = 2.34, sigma_mol = 2e-15,
-//! dlnP/dlnr = -3.25, alpha = 1e-3, M_* = 1 M_sun.
-LocalGas mmsn_gas(double r_au) {
-  const double r = r_au * units::kAu;
-  const double mu = 2.34;
-  LocalGas g;
-  g.sigma_g = 1700.0 * std::pow(r_au, -1.5);
-  g.temperature = 280.0 / std::sqrt(r_au);
-  g.c_s = std::sqrt(units::kBoltzmann * g.temperature / (mu * units::kMassH));
-  g.v_th = std::sqrt(8.0 / units::kPi) * g.c_s;
-  g.omega_k = std::sqrt(units::kG * units::kMsun / (r * r * r));
-  g.v_k = g.omega_k * r;
-  g.h_g = g.c_s / g.omega_k;
-  g.rho_g = g.sigma_g / (std::sqrt(2.0 * units::kPi) * g.h_g);
-  g.mfp = mu * units::kMassH / (2e-15 * g.rho_g);
-  g.nu_mol = 0.5 * g.v_th * g.mfp;
-  g.eta = -0.5 * (g.h_g / r) * (g.h_g / r) * (-3.25);
-  g.alpha = 1e-3;
-  return g;
-}
 
 //! Icy monomers as the engine builds them: m0 and E_roll from contact_properties().
 Species ice_species() {
@@ -98,8 +79,6 @@ GrowthOptions plain_options(bool compaction = false) {
   o.self_gravity = compaction;
   return o;
 }
-
-double rel_err(double value, double ref) { return std::abs(value / ref - 1.0); }
 
 //! E1 factor of spec §5.2, S(x) = 1/2 [1 - tanh((x - 1)/w)].
 double erosion_switch(double x, double w) {

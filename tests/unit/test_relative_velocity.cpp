@@ -13,33 +13,12 @@
 #include "physics/particle.hpp"
 #include "physics/relative_velocity.hpp"
 #include "src/units.hpp"
+#include "tests/unit/mmsn_gas.hpp"
 
 namespace panoptic::physics {
 namespace {
 
 using AD = Eigen::AutoDiffScalar<Eigen::Vector2d>;
-
-//! MMSN midplane gas at r_au, spec §1.2-1.6 written out (alpha = 1e-3, mu = 2.34).
-LocalGas mmsn_gas(double r_au) {
-  const double r = r_au * units::kAu;
-  const double mu = 2.34;
-  LocalGas g;
-  g.sigma_g = 1700.0 * std::pow(r_au, -1.5);
-  g.temperature = 280.0 / std::sqrt(r_au);
-  g.c_s = std::sqrt(units::kBoltzmann * g.temperature / (mu * units::kMassH));
-  g.v_th = std::sqrt(8.0 / units::kPi) * g.c_s;
-  g.omega_k = std::sqrt(units::kG * units::kMsun / (r * r * r));
-  g.v_k = g.omega_k * r;
-  g.h_g = g.c_s / g.omega_k;
-  g.rho_g = g.sigma_g / (std::sqrt(2.0 * units::kPi) * g.h_g);
-  g.mfp = mu * units::kMassH / (2e-15 * g.rho_g);
-  g.nu_mol = 0.5 * g.v_th * g.mfp;
-  g.eta = -0.5 * (g.h_g / r) * (g.h_g / r) * (-3.25);
-  g.alpha = 1e-3;
-  return g;
-}
-
-double rel_err(double value, double ref) { return std::abs(value / ref - 1.0); }
 
 constexpr double kStSmall = 1e-4;  // small-projectile St (spec §3 default option)
 constexpr double kMSmall = 1e-12;  // its mass [g]: Brownian term negligible (< 1 cm/s)
