@@ -237,10 +237,12 @@ void CvodeIntegrator::set_profile(CallbackTimes* times) {
   ls->ops->solve = times ? timed_lsolve : SUNLinSolSolve_KLU;
 }
 
-CvodeIntegrator::StepInfo CvodeIntegrator::step_info(int k) const {
+CvodeIntegrator::StepInfo CvodeIntegrator::step_info(int k, bool all_errors) const {
   StepInfo info;
   CVodeGetCurrentStep(cvode_, &info.h);
   CVodeGetCurrentOrder(cvode_, &info.order);
+  CVodeGetLastStep(cvode_, &info.h_last);
+  CVodeGetLastOrder(cvode_, &info.order_last);
   N_Vector ele = N_VClone(nv(y_)), w = N_VClone(nv(y_));
   if (CVodeGetEstLocalErrors(cvode_, ele) == CV_SUCCESS &&
       CVodeGetErrWeights(cvode_, w) == CV_SUCCESS) {
@@ -249,6 +251,10 @@ CvodeIntegrator::StepInfo CvodeIntegrator::step_info(int k) const {
     const long n = N_VGetLength(ele);
     std::vector<std::pair<long, double>> all(n);
     for (long i = 0; i < n; ++i) all[i] = {i, std::abs(e[i] * wt[i])};
+    if (all_errors) {
+      info.weighted_errors.resize(n);
+      for (long i = 0; i < n; ++i) info.weighted_errors[i] = all[i].second;
+    }
     const auto m = std::min<std::size_t>(static_cast<std::size_t>(k), all.size());
     std::partial_sort(all.begin(), all.begin() + m, all.end(),
                       [](const auto& a, const auto& b) { return a.second > b.second; });

@@ -76,15 +76,18 @@ class CvodeIntegrator {
   //! Accumulate the wall time of every callback and of KLU into `times` (null: off).
   //! For benchmarks: the clock reads cost ~50 ns per call.
   void set_profile(CallbackTimes* times);
-  //! Current step size [s] and order, and the k components with the largest weighted
-  //! local error estimate of the last step (index, |e_i w_i|), largest first: which
-  //! variables limit the step (diagnostics, benchmarks).
+  //! Current step size [s] and order (of the next step), the size and order of the last
+  //! step, and the k components with the largest weighted local error estimate of the
+  //! last step (index, |e_i w_i|), largest first: which variables limit the step
+  //! (diagnostics, benchmarks). With `all_errors`, also |e_i w_i| of every component
+  //! (CVODE's error test: their root mean square over all components <= 1).
   struct StepInfo {
-    double h = 0.0;
-    int order = 0;
+    double h = 0.0, h_last = 0.0;
+    int order = 0, order_last = 0;
     std::vector<std::pair<long, double>> largest_errors;
+    std::vector<double> weighted_errors;
   };
-  StepInfo step_info(int k) const;
+  StepInfo step_info(int k, bool all_errors = false) const;
 
   double time() const { return t_; }
   std::span<const double> state() const;

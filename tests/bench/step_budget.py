@@ -33,21 +33,28 @@ import tomllib
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 ROW = re.compile(r"^\| ([0-9.]+) \| (\d+) \| (\d+) \| (\d+) \|")
 TRACE = re.compile(r"^t = (\S+) yr  step \d+ .*limited by:\s+(\w+) in cell (\d+).*"
-                   r"\|\| .*Sigma_d = (\S+) g")
+                   r"\|\| .*Sigma_d = (\S+) g.*St = ([-+.0-9e]+)\)")
 
 
 def bench(exe, sets, trace=False):
     """(wall s, steps, RHS, Jac) of one bench_fiducial run; with trace, also the list of
-    (t [yr], limiting variable) of every step."""
-    cmd = [exe, "--runs", "1"] + (["--trace", "1"] if trace else [])
+    (t [yr], limiting variable, Sigma_d and St of its cell) of every step, and the table of
+    bench_fiducial --lts (local time stepping, best case)."""
+    cmd = [exe, "--runs", "1"] + (["--trace", "1", "--lts"] if trace else [])
     for s in sets:
         cmd += ["--set", s]
     out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
     row = next(m for m in map(ROW.match, out.splitlines()) if m)
-    steps = [(float(m.group(1)), m.group(2), float(m.group(4)))
+    steps = [(float(m.group(1)), m.group(2), float(m.group(4)), float(m.group(5)))
              for m in map(TRACE.match, out.splitlines()) if m] if trace else None
+    lines = out.splitlines()
+    lts = None
+    if trace:  # bench_fiducial prints the --lts table before its own
+        k = next(i for i, line in enumerate(lines) if line.startswith("local time stepping"))
+        lts = "\n".join(lines[k:next(i for i in range(k, len(lines))
+                                     if lines[i].startswith("params/"))])
     return float(row.group(1)), int(row.group(2)), int(row.group(3)), int(row.group(4)), \
-        steps
+        steps, lts
 
 
 def scene_grid(sets):
@@ -83,13 +90,13 @@ def main():
     n, r_in, r_out, p = scene_grid(a.sets)
     local = ["transport.drift=false", "transport.diffusion=false"]
 
-    wall, steps, rhs, jac, trace = bench(a.exe, a.sets, trace=True)
-    _, steps_local, _, _, _ = bench(a.exe, a.sets + local)
+    wall, steps, rhs, jac, trace, lts = bench(a.exe, a.sets, trace=True)
+    steps_local = bench(a.exe, a.sets + local)[1]
     rc = cell_centres(n, r_in, r_out, p)
     sampled = list(range(a.every // 2, n, a.every))
     own = []
     for i in sampled:
-        one = a.sets + local + [f"grid.n_cells=4", f"grid.r_in_au={rc[i]:.9g}",
+        one = a.sets + local + ["grid.n_cells=4", f"grid.r_in_au={rc[i]:.9g}",
                                 f"grid.r_out_au={rc[i] * 1.0005:.9g}", "grid.stretch=0"]
         own.append(bench(a.exe, one)[1])
         print(f"  cell {i:4d} (r = {rc[i]:8.3f} au): {own[-1]} steps on its own",
@@ -116,24 +123,71 @@ def main():
     print(f"\nrestart cost of one cell at r = {mid:.3g} au: {per_restart:.1f} steps per "
           f"CVODE restart ({restart[0]} steps with 41 snapshots, {restart[1]} with 401)")
     # a drained cell: Sigma_d below 1e-6 of the largest Sigma_d met in the trace
-    drained = 1e-6 * max(sd for _, _, sd in trace)
+    sd_max = max(sd for _, _, sd, _ in trace)
+    drained = 1e-6 * sd_max
     by_decade = collections.Counter()
     by_drained = collections.Counter()
     by_var = collections.defaultdict(collections.Counter)
-    for t, var, sd in trace:
+    past_barrier = collections.defaultdict(collections.Counter)
+    for t, var, sd, st in trace:
         d = math.floor(math.log10(max(t, 1e-3)))
         by_decade[d] += 1
         by_drained[d] += sd < drained
         by_var[d][var] += 1
-    print("\n| t [yr] | steps | share | limited most by | limited by a drained cell |\n"
-          "|---|---|---|---|---|")
+        if st > 1.0:  # past the drift barrier: running away, or what conversion left
+            past_barrier[d]["left" if sd < 1e-3 * sd_max else "full"] += 1
+    print("\n| t [yr] | steps | share | limited most by | limited by a drained cell | "
+          "by a cell past St = 1 (of which nearly empty) |\n|---|---|---|---|---|---|")
     for d in sorted(by_decade):
         top = ", ".join(f"{v} {c}" for v, c in by_var[d].most_common(2))
         lo = "0" if d <= -3 else f"1e{d}"
+        pb = past_barrier[d]
         print(f"| {lo}..1e{d + 1} | {by_decade[d]} | "
-              f"{100 * by_decade[d] / len(trace):.0f} % | {top} | {by_drained[d]} |")
+              f"{100 * by_decade[d] / len(trace):.0f} % | {top} | {by_drained[d]} | "
+              f"{pb['full'] + pb['left']} ({pb['left']}) |")
     print(f"\n{sum(by_drained.values())} steps limited by a drained cell (Sigma_d < "
-          f"{drained:.2g} g cm^-2, 1e-6 of the largest Sigma_d in the trace)")
+          f"{drained:.2g} g cm^-2, 1e-6 of the largest Sigma_d in the trace); "
+          f"'nearly empty': Sigma_d < 1e-3 of it")
+    print("\n" + lts)
+    crossing_times(os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(a.exe))),
+                                "panoptic"), a.sets)
+
+
+def crossing_times(panoptic, sets):
+    """How fast transport is where the dust is: the shortest time in which drift crosses a
+    cell holding at least 1e-3 of the largest Sigma_d, at each decade of snapshots of a
+    `panoptic run` of the scene (the time scale a multirate scheme must resolve in the
+    transport, against the local runaways' t_grow of 0.3-1 yr)."""
+    import tempfile
+    import h5py
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "fiducial.h5")
+        cmd = [panoptic, "run", os.path.join(REPO, "params", "fiducial.toml"), "-o", out]
+        for s in sets:
+            cmd += ["--set", s]
+        subprocess.run(cmd, capture_output=True, text=True, check=True)
+        with h5py.File(out, "r") as f:
+            t = f["snapshots/time"][:]  # yr
+            dr = (f["grid/r_f"][1:] - f["grid/r_f"][:-1]) * 1.495978707e13  # cm
+            rc = f["grid/r_c"][:]
+            vr = abs(f["snapshots/v_r"][:])  # cm/s on the faces
+            sd = f["snapshots/sigma_d"][:]
+            st = f["snapshots/St"][:]
+    best = {}
+    for k in range(1, len(t)):
+        d = math.floor(math.log10(t[k]))
+        for i in range(len(dr)):
+            v = max(vr[k, i], vr[k, i + 1])
+            if sd[k, i] < 1e-3 * sd[k].max() or v <= 0.0:
+                continue
+            tc = dr[i] / v / 3.15576e7
+            if d not in best or tc < best[d][0]:
+                best[d] = (tc, rc[i], st[k, i], t[k])
+    print("\n| snapshots in [yr] | shortest drift crossing of a cell with dust [yr] | at r "
+          "[au] | St | t [yr] |\n|---|---|---|---|---|")
+    for d in sorted(best):
+        tc, r, s, tk = best[d]
+        print(f"| 1e{d}..1e{d + 1} | {tc:.2g} | {r:.3g} | {s:.2g} | {tk:.3g} |")
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -75,6 +76,43 @@ TEST(Integrator, StiffRobertsonWithKlu) {
   EXPECT_NEAR(y[1] / (4e-6 * y1), 1.0, 5e-3);
   EXPECT_NEAR(y[0] + y[1] + y[2], 1.0, 1e-12);  // linear invariant kept by BDF
   EXPECT_LT(cvode.stats().nst, 2000);
+}
+
+TEST(Integrator, StepInfoHoldsTheErrorTestOfTheLastStep) {
+  // bench_fiducial --lts rests on step_info(k, true): the weighted local errors of the
+  // step just accepted, whose root mean square is CVODE's error-test norm (<= 1 for an
+  // accepted step, > 0 once the step did something), with that step's size and order.
+  const auto model = robertson_model();
+  IntegratorOptions opt;
+  opt.rtol = 1e-6;
+  opt.atol = {1e-12, 1e-16, 1e-12};
+  const double y0[3] = {1.0, 0.0, 0.0};
+  CvodeIntegrator cvode(*model, 0.0, y0, opt);
+  std::vector<double> norms;
+  double t_prev = 0.0;
+  cvode.advance_to(4e2, [&](double t, long) {
+    const auto info = cvode.step_info(2, true);
+    ASSERT_EQ(info.weighted_errors.size(), 3u);
+    double s2 = 0.0;
+    for (double e : info.weighted_errors) s2 += e * e;
+    const double norm = std::sqrt(s2 / 3.0);
+    EXPECT_LE(norm, 1.0) << "t = " << t;
+    EXPECT_GT(norm, 0.0) << "t = " << t;
+    EXPECT_NEAR(info.h_last, t - t_prev, 1e-12 * t) << "t = " << t;
+    EXPECT_GE(info.order_last, 1);
+    EXPECT_LE(info.order_last, 5);
+    EXPECT_EQ(info.largest_errors.size(), 2u);
+    EXPECT_EQ(
+        info.largest_errors[0].second,
+        *std::max_element(info.weighted_errors.begin(), info.weighted_errors.end()));
+    t_prev = t;
+    norms.push_back(norm);
+  });
+  ASSERT_GT(norms.size(), 20u);
+  // CVODE sizes its steps to bring this norm near 1/6 (its BIAS2), not near the ~1e-6
+  // an unweighted error would have here.
+  std::sort(norms.begin(), norms.end());
+  EXPECT_GT(norms[norms.size() / 2], 0.01);
 }
 
 TEST(Integrator, NewtonCoefficientReachesCvode) {
