@@ -91,84 +91,79 @@ void BM_Jacobian(benchmark::State& state) {
   set_per_cell(state, n);
 }
 
+//! The Newton matrix M = I - gamma J of the fixture's state at a step typical of that
+//! time (0.1 yr, BDF2), in a KLU solver that has analysed and factorised it once (not
+//! timed), with a right-hand side b = 1.
+class NewtonSystem {
+ public:
+  explicit NewtonSystem(const Fixture& fx) {
+    const auto& model = fx.sim->model();
+    const auto& pattern = model.pattern();
+    const auto size = static_cast<sunindextype>(fx.y.size());
+    std::vector<double> jac(pattern.nnz());
+    model.jacobian(kStateAgeYr * units::kYr, fx.y, jac);
+    const double gamma = 0.1 * units::kYr * 2.0 / 3.0;
+    SUNContext_Create(nullptr, &ctx_);
+    A_ = SUNSparseMatrix(size, size, pattern.nnz(), CSC_MAT, ctx_);
+    x_ = N_VNew_Serial(size, ctx_);
+    b_ = N_VNew_Serial(size, ctx_);
+    pattern.copy_structure_to(SUNSparseMatrix_IndexPointers(A_),
+                              SUNSparseMatrix_IndexValues(A_));
+    double* a = SUNSparseMatrix_Data(A_);
+    const auto cols = pattern.col_ptr();
+    const auto rows = pattern.row_index();
+    for (sunindextype j = 0; j < size; ++j)
+      for (sunindextype k = cols[j]; k < cols[j + 1]; ++k)
+        a[k] = (rows[k] == j ? 1.0 : 0.0) - gamma * jac[k];
+    ls_ = SUNLinSol_KLU(x_, A_, ctx_);
+    SUNLinSolInitialize(ls_);
+    SUNLinSolSetup(ls_, A_);  // analysis + first factorisation
+    N_VConst(1.0, b_);
+  }
+  ~NewtonSystem() {
+    SUNLinSolFree(ls_);
+    N_VDestroy(x_);
+    N_VDestroy(b_);
+    SUNMatDestroy(A_);
+    SUNContext_Free(&ctx_);
+  }
+  NewtonSystem(const NewtonSystem&) = delete;
+  NewtonSystem& operator=(const NewtonSystem&) = delete;
+
+  //! A later set-up: refactorisation with the same pivot order.
+  void refactor() { SUNLinSolSetup(ls_, A_); }
+  void solve() {
+    SUNLinSolSolve(ls_, A_, x_, b_, 0.0);
+    benchmark::DoNotOptimize(N_VGetArrayPointer(x_));
+  }
+
+ private:
+  SUNContext ctx_ = nullptr;
+  SUNMatrix A_ = nullptr;
+  N_Vector x_ = nullptr, b_ = nullptr;
+  SUNLinearSolver ls_ = nullptr;
+};
+
 //! KLU as CVODE uses it: the first set-up analyses and factorises; later set-ups
 //! refactorise with the same pivot order (timed here), then one solve per Newton
 //! iteration (one per set-up timed here; the fiducial run averages ~10 solves per
 //! set-up, see bench_fiducial).
 void BM_KluFactorSolve(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  auto& fx = fixture(n);
-  const auto& model = fx.sim->model();
-  const auto& pattern = model.pattern();
-  const auto size = static_cast<sunindextype>(fx.y.size());
-  std::vector<double> jac(pattern.nnz());
-  model.jacobian(kStateAgeYr * units::kYr, fx.y, jac);
-  // Newton matrix M = I - gamma J at a step typical of that time (0.1 yr, BDF2).
-  const double gamma = 0.1 * units::kYr * 2.0 / 3.0;
-  SUNContext ctx = nullptr;
-  SUNContext_Create(nullptr, &ctx);
-  SUNMatrix A = SUNSparseMatrix(size, size, pattern.nnz(), CSC_MAT, ctx);
-  N_Vector x = N_VNew_Serial(size, ctx), b = N_VNew_Serial(size, ctx);
-  pattern.copy_structure_to(SUNSparseMatrix_IndexPointers(A),
-                            SUNSparseMatrix_IndexValues(A));
-  double* a = SUNSparseMatrix_Data(A);
-  const auto cols = pattern.col_ptr();
-  const auto rows = pattern.row_index();
-  for (sunindextype j = 0; j < size; ++j)
-    for (sunindextype k = cols[j]; k < cols[j + 1]; ++k)
-      a[k] = (rows[k] == j ? 1.0 : 0.0) - gamma * jac[k];
-  SUNLinearSolver ls = SUNLinSol_KLU(x, A, ctx);
-  SUNLinSolInitialize(ls);
-  SUNLinSolSetup(ls, A);  // analysis + first factorisation, not timed
-  N_VConst(1.0, b);
+  NewtonSystem newton(fixture(n));
   for (auto _ : state) {
-    SUNLinSolSetup(ls, A);
-    SUNLinSolSolve(ls, A, x, b, 0.0);
-    benchmark::DoNotOptimize(N_VGetArrayPointer(x));
+    newton.refactor();
+    newton.solve();
   }
   set_per_cell(state, n);
-  SUNLinSolFree(ls);
-  N_VDestroy(x);
-  N_VDestroy(b);
-  SUNMatDestroy(A);
-  SUNContext_Free(&ctx);
 }
 
+//! One solve with the factors of the last set-up (a Newton iteration).
 void BM_KluSolve(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  auto& fx = fixture(n);
-  const auto& model = fx.sim->model();
-  const auto& pattern = model.pattern();
-  const auto size = static_cast<sunindextype>(fx.y.size());
-  std::vector<double> jac(pattern.nnz());
-  model.jacobian(kStateAgeYr * units::kYr, fx.y, jac);
-  const double gamma = 0.1 * units::kYr * 2.0 / 3.0;
-  SUNContext ctx = nullptr;
-  SUNContext_Create(nullptr, &ctx);
-  SUNMatrix A = SUNSparseMatrix(size, size, pattern.nnz(), CSC_MAT, ctx);
-  N_Vector x = N_VNew_Serial(size, ctx), b = N_VNew_Serial(size, ctx);
-  pattern.copy_structure_to(SUNSparseMatrix_IndexPointers(A),
-                            SUNSparseMatrix_IndexValues(A));
-  double* a = SUNSparseMatrix_Data(A);
-  const auto cols = pattern.col_ptr();
-  const auto rows = pattern.row_index();
-  for (sunindextype j = 0; j < size; ++j)
-    for (sunindextype k = cols[j]; k < cols[j + 1]; ++k)
-      a[k] = (rows[k] == j ? 1.0 : 0.0) - gamma * jac[k];
-  SUNLinearSolver ls = SUNLinSol_KLU(x, A, ctx);
-  SUNLinSolInitialize(ls);
-  SUNLinSolSetup(ls, A);
-  N_VConst(1.0, b);
-  for (auto _ : state) {
-    SUNLinSolSolve(ls, A, x, b, 0.0);
-    benchmark::DoNotOptimize(N_VGetArrayPointer(x));
-  }
+  NewtonSystem newton(fixture(n));
+  for (auto _ : state) newton.solve();
   set_per_cell(state, n);
-  SUNLinSolFree(ls);
-  N_VDestroy(x);
-  N_VDestroy(b);
-  SUNMatDestroy(A);
-  SUNContext_Free(&ctx);
 }
 
 }  // namespace
