@@ -58,13 +58,21 @@ TEST(Integrator, LinearDecayOverTwelveDecades) {
   }
 }
 
+namespace {
+//! Robertson's tolerances in these tests: rtol as given, atol scaled to each component
+//! (y2 stays below ~4e-5).
+IntegratorOptions robertson_options(double rtol) {
+  IntegratorOptions opt;
+  opt.rtol = rtol;
+  opt.atol = {1e-12, 1e-16, 1e-12};
+  return opt;
+}
+constexpr double kRobertsonY0[3] = {1.0, 0.0, 0.0};
+}  // namespace
+
 TEST(Integrator, StiffRobertsonWithKlu) {
   const auto model = robertson_model();
-  IntegratorOptions opt;
-  opt.rtol = 1e-8;
-  opt.atol = {1e-12, 1e-16, 1e-12};
-  const double y0[3] = {1.0, 0.0, 0.0};
-  CvodeIntegrator cvode(*model, 0.0, y0, opt);
+  CvodeIntegrator cvode(*model, 0.0, kRobertsonY0, robertson_options(1e-8));
   cvode.advance_to(4e10);
   // Late-time asymptotics, worked out by hand: y2 is quasi-steady, 0.04 y1 = 1e4 y2 y3
   // (y3 ~ 1), so y2 = 4e-6 y1; then d(y1 + y2)/dt = -3e7 y2^2 = -4.8e-4 y1^2 gives
@@ -83,11 +91,7 @@ TEST(Integrator, StepInfoHoldsTheErrorTestOfTheLastStep) {
   // step just accepted, whose root mean square is CVODE's error-test norm (<= 1 for an
   // accepted step, > 0 once the step did something), with that step's size and order.
   const auto model = robertson_model();
-  IntegratorOptions opt;
-  opt.rtol = 1e-6;
-  opt.atol = {1e-12, 1e-16, 1e-12};
-  const double y0[3] = {1.0, 0.0, 0.0};
-  CvodeIntegrator cvode(*model, 0.0, y0, opt);
+  CvodeIntegrator cvode(*model, 0.0, kRobertsonY0, robertson_options(1e-6));
   std::vector<double> norms;
   double t_prev = 0.0;
   cvode.advance_to(4e2, [&](double t, long) {
@@ -121,12 +125,9 @@ TEST(Integrator, NewtonCoefficientReachesCvode) {
   // give the same answer (both are well inside the tolerance of the other).
   auto run = [](double coef) {
     const auto model = robertson_model();
-    IntegratorOptions opt;
-    opt.rtol = 1e-6;
-    opt.atol = {1e-12, 1e-16, 1e-12};
+    IntegratorOptions opt = robertson_options(1e-6);
     opt.newton_coef = coef;
-    const double y0[3] = {1.0, 0.0, 0.0};
-    CvodeIntegrator cvode(*model, 0.0, y0, opt);
+    CvodeIntegrator cvode(*model, 0.0, kRobertsonY0, opt);
     cvode.advance_to(4e5);
     const auto s = cvode.stats();
     return std::make_pair(static_cast<double>(s.nni) / static_cast<double>(s.nst),
