@@ -126,6 +126,15 @@ void write_file(const fs::path& path, const Checkpoint& chk) {
     h5::Handle g = h5::create_group(f.get(), "solver");
     set_stats(g.get(), chk.stats);
   }
+  if (!chk.row_digests.empty()) {
+    // one dataset per output dataset, "snapshots/St" named "snapshots:St"
+    h5::Handle g = h5::create_group(f.get(), "row_digests");
+    for (const auto& [key, digests] : chk.row_digests) {
+      std::string name = key;
+      std::replace(name.begin(), name.end(), '/', ':');
+      h5::write_u64s(g.get(), name, digests);
+    }
+  }
   h5::set_attr(f.get(), "checksum", "fnv1a64:" + hex(checkpoint_checksum(chk)));
   flush(f.get(), path);
   h5::set_attr(f.get(), "complete", 1L);
@@ -147,6 +156,14 @@ Checkpoint read_fields(hid_t f) {
   chk.version = h5::get_attr_string(f, "version");
   h5::Handle g = h5::open_group(f, "solver");
   chk.stats = get_stats(g.get());
+  if (h5::exists(f, "row_digests")) {
+    h5::Handle d = h5::open_group(f, "row_digests");
+    for (const std::string& name : h5::dataset_names(d.get())) {
+      std::string key = name;
+      std::replace(key.begin(), key.end(), ':', '/');
+      chk.row_digests[key] = h5::read_u64s(d.get(), name);
+    }
+  }
   return chk;
 }
 
@@ -180,14 +197,6 @@ std::string value_text(const ConfigValue& v) {
 
 }  // namespace
 
-std::uint64_t fnv1a64(std::span<const std::byte> bytes, std::uint64_t hash) {
-  for (const std::byte b : bytes) {
-    hash ^= static_cast<std::uint64_t>(b);
-    hash *= 0x100000001b3ULL;
-  }
-  return hash;
-}
-
 std::uint64_t checkpoint_checksum(const Checkpoint& chk) {
   Hasher h;
   h.real(chk.t);
@@ -204,6 +213,12 @@ std::uint64_t checkpoint_checksum(const Checkpoint& chk) {
   h.real(chk.wall_s);
   h.text(chk.output_file);
   h.text(chk.run_id);
+  // (nothing when there are none: checkpoints written before they were kept verify)
+  for (const auto& [key, digests] : chk.row_digests) {
+    h.text(key);
+    h.integer(static_cast<long>(digests.size()));
+    h.bytes(std::as_bytes(std::span<const std::uint64_t>(digests)));
+  }
   return h.value();
 }
 
@@ -443,7 +458,7 @@ RunOutput continue_output(const RestartPoint& restart, const fs::path& output,
                     " (it has " + std::to_string(t_yr.size()) +
                     " snapshots); pass that run's output file with -o");
   }
-  RunOutput out(path, ContinueRun{n_keep});
+  RunOutput out(path, ContinueRun{n_keep, chk.row_digests});
   char line[160];
   std::snprintf(line, sizeof line, "t = %.17g yr (snapshot %ld): restarted from ",
                 chk.t / units::kYr, chk.snapshot_index);

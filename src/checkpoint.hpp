@@ -6,10 +6,12 @@
 //! A checkpoint is a small HDF5 file next to the output: `<stem>.chk.h5`, the one before
 //! kept as `<stem>.chk.prev.h5`. It holds the raw CVODE state y at t, the layout
 //! signature, the resolved scene, the snapshot index reached, the solver statistics, the
-//! output file and its run_id, a checksum of all of these (FNV-1a, 64 bit) and, written
-//! last, a completeness flag. It is written to `<stem>.chk.h5.tmp`, fsynced, and renamed
-//! over `<stem>.chk.h5` (then the directory is fsynced), so that at every moment of a
-//! crash `<stem>.chk.h5` is a whole checkpoint, the new one or the old one.
+//! output file and its run_id, the digest of every row written to the output so far
+//! (group row_digests: a restart verifies the rows it keeps against them), a checksum
+//! of all of these (FNV-1a, 64 bit) and, written last, a completeness flag. It is written
+//! to `<stem>.chk.h5.tmp`, fsynced, and renamed over `<stem>.chk.h5` (then the directory
+//! is fsynced), so that at every moment of a crash `<stem>.chk.h5` is a whole checkpoint,
+//! the new one or the old one.
 //!
 //! Bit-for-bit continuation rests on two rules (main.cpp): checkpoints are taken only at
 //! snapshot times, and with solver.reinit_at_snapshots every run reinitialises CVODE at
@@ -25,6 +27,7 @@
 
 #include "src/config.hpp"
 #include "src/cvode_integrator.hpp"
+#include "src/digest.hpp"
 #include "src/run_output.hpp"
 #include "src/state_layout.hpp"
 
@@ -43,11 +46,11 @@ struct Checkpoint {
   std::string run_id;            //!< the output's root attribute run_id
   std::string git_sha;           //!< of the program that wrote the checkpoint
   std::string version;
+  //! Digests of the output's rows written up to the checkpoint (RunOutput::row_digests),
+  //! to verify them on restart; empty in checkpoints written before they were kept.
+  RowDigests row_digests;
 };
 
-//! FNV-1a, 64 bit, of `bytes`, continuing from `hash` (the FNV offset basis by default).
-std::uint64_t fnv1a64(std::span<const std::byte> bytes,
-                      std::uint64_t hash = 0xcbf29ce484222325ULL);
 //! The checksum of every field of a checkpoint except the strings git_sha and version:
 //! verified on load, so a flipped bit anywhere in the payload is noticed.
 std::uint64_t checkpoint_checksum(const Checkpoint& chk);

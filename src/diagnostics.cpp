@@ -69,7 +69,8 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
     // earlier restart) can leave rows read back as the fill value 0 after the valid
     // ones, and those must not be kept (regression.test_restart_bitwise). Rows whose
     // chunk is gone (a writer killed while HDF5 flushed its chunk index) are passed over
-    // here and written as NaN below.
+    // here; they, and kept rows whose digest differs from the checkpoint's, are written
+    // as NaN below (RunOutput::keep_rows).
     std::vector<char> gone(times.size(), 0);
     for (const auto& [first, last] : h5::unallocated_rows(g.get(), "time", times.size()))
       std::fill(gone.begin() + static_cast<long>(first),
@@ -85,7 +86,7 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
     h5::truncate_stack(g.get(), "time", keep);  // time first: rows need a time
     for (const char* name : {"pebble_flux", "m_through", "mass_budget"})
       h5::truncate_stack(g.get(), name, keep);
-    lost_ = mark_lost_rows(out_.file(), "timeseries", keep);
+    lost_ = out_.keep_rows("timeseries", keep);
     out_.flush();  // the cut on disk now, not at the first snapshot: a shorter window
                    // in which a kill leaves the file half cut
     while (next_sample_ < sample_times_.size() && sample_times_[next_sample_] <= t_start)

@@ -226,6 +226,56 @@ std::vector<double> read_doubles(hid_t parent, const std::string& name) {
   return out;
 }
 
+std::vector<double> read_rows(hid_t parent, const std::string& name, hsize_t first,
+                              hsize_t last) {
+  const Stack st = open_stack(parent, name);
+  if (last > st.rows || first > last)
+    throw IoError("HDF5: rows " + std::to_string(first) + ".." + std::to_string(last) +
+                  " of " + name + " out of range (" + std::to_string(st.rows) + " rows)");
+  std::vector<double> out((last - first) * st.width);
+  if (out.empty()) return out;
+  // (a 1-D stack's selection reads only the first entry of start and count)
+  const std::array<hsize_t, 2> start{first, 0}, count{last - first, st.width};
+  ok(H5Sselect_hyperslab(st.space.get(), H5S_SELECT_SET, start.data(), nullptr,
+                         count.data(), nullptr),
+     "selecting", name);
+  const hsize_t n[1] = {out.size()};
+  Handle mspace(ok(H5Screate_simple(1, n, nullptr), "dataspace"), H5Sclose);
+  ok(H5Dread(st.ds.get(), H5T_NATIVE_DOUBLE, mspace.get(), st.space.get(), H5P_DEFAULT,
+             out.data()),
+     "reading", name);
+  return out;
+}
+
+hsize_t stack_width(hid_t parent, const std::string& name) {
+  return open_stack(parent, name).width;
+}
+
+void write_u64s(hid_t parent, const std::string& name,
+                std::span<const std::uint64_t> data) {
+  const hsize_t dims[1] = {data.size()};
+  Handle space(ok(H5Screate_simple(1, dims, nullptr), "dataspace"), H5Sclose);
+  Handle ds(ok(H5Dcreate2(parent, name.c_str(), H5T_STD_U64LE, space.get(), H5P_DEFAULT,
+                          H5P_DEFAULT, H5P_DEFAULT),
+               "creating dataset " + name),
+            H5Dclose);
+  if (!data.empty())
+    ok(H5Dwrite(ds.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+       "writing", name);
+}
+
+std::vector<std::uint64_t> read_u64s(hid_t parent, const std::string& name) {
+  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
+            H5Dclose);
+  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<std::uint64_t> out(static_cast<std::size_t>(n));
+  if (n > 0)
+    ok(H5Dread(ds.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
+       "reading", name);
+  return out;
+}
+
 void set_attr(hid_t obj, const std::string& name, const std::string& value) {
   if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
   Handle type(ok(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);

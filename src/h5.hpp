@@ -4,6 +4,7 @@
 //! extendible (time-stacked) double datasets, string/number attributes.
 #include <hdf5.h>
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <utility>
@@ -66,6 +67,15 @@ void fill_rows_nan(hid_t parent, const std::string& name, hsize_t first, hsize_t
 std::vector<std::string> dataset_names(hid_t group);
 //! Reads a whole double dataset (any rank, flattened).
 std::vector<double> read_doubles(hid_t parent, const std::string& name);
+//! Rows [first, last) of a stack, flattened (width values per row; 1 for a 1-D stack).
+std::vector<double> read_rows(hid_t parent, const std::string& name, hsize_t first,
+                              hsize_t last);
+//! Width of a stack's rows (1 for a 1-D stack).
+hsize_t stack_width(hid_t parent, const std::string& name);
+//! Fixed-size 1-D dataset of unsigned 64-bit integers (digests), and its reader.
+void write_u64s(hid_t parent, const std::string& name,
+                std::span<const std::uint64_t> data);
+std::vector<std::uint64_t> read_u64s(hid_t parent, const std::string& name);
 
 void set_attr(hid_t obj, const std::string& name, const std::string& value);
 void set_attr(hid_t obj, const std::string& name, double value);

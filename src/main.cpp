@@ -210,7 +210,8 @@ int run(const RunArgs& a) {
                       fs::absolute(out.path()).string(),
                       out.run_id(),
                       PANOPTIC_GIT_SHA,
-                      PANOPTIC_VERSION};
+                      PANOPTIC_VERSION,
+                      out.row_digests()};
   };
   Checkpoint last = record(times.front(), y0, index0);
   RunDiagnostics diag(sim, out, restart ? times.front() : 0.0);
@@ -219,9 +220,9 @@ int run(const RunArgs& a) {
     if (!diag.lost_rows().empty()) lost += (lost.empty() ? "" : "; ") + diag.lost_rows();
     if (!lost.empty()) {
       std::fprintf(stderr,
-                   "panoptic: warning: %s had lost rows written before the checkpoint (a "
-                   "run killed while HDF5 flushed the file): %s; they are NaN now, the "
-                   "run goes on\n",
+                   "panoptic: warning: %s had lost or garbled rows written before the "
+                   "checkpoint (a run killed while HDF5 flushed the file): %s; they are "
+                   "NaN now, the run goes on\n",
                    out.path().c_str(), lost.c_str());
       out.set_root_attr("restarts",
                         out.root_attr("restarts") + "; lost rows (now NaN): " + lost);

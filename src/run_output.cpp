@@ -1,7 +1,9 @@
 #include "src/run_output.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
+#include <limits>
 #include <random>
 
 #include "src/cvode_integrator.hpp"
@@ -95,21 +97,57 @@ RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path
     fields_[name] = rank == 2 ? dims[1] : 0;
   }
   n_snapshots_ = keep.n_snapshots;
-  lost_ = mark_lost_rows(file_.get(), "snapshots", keep.n_snapshots);
+  restart_digests_ = std::move(keep.digests);
+  lost_ = keep_rows("snapshots", keep.n_snapshots);
   flush();
 }
 
-std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows) {
+std::string RunOutput::keep_rows(const std::string& group, hsize_t rows) {
+  return mark_lost_rows(file_.get(), group, rows, &restart_digests_, &digests_);
+}
+
+std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows,
+                           const RowDigests* expected, RowDigests* kept) {
   h5::Handle g = h5::open_group(file, group);
   std::string lost;
-  for (const std::string& name : h5::dataset_names(g.get()))
-    for (const auto& [first, last] : h5::unallocated_rows(g.get(), name, rows)) {
+  for (const std::string& name : h5::dataset_names(g.get())) {
+    const std::string key = group + "/" + name;
+    std::vector<char> bad(rows, 0);
+    for (const auto& [first, last] : h5::unallocated_rows(g.get(), name, rows))
+      std::fill(bad.begin() + static_cast<long>(first),
+                bad.begin() + static_cast<long>(last), 1);
+    const auto it = expected ? expected->find(key) : RowDigests::const_iterator{};
+    const bool verify = expected && it != expected->end();
+    std::vector<std::uint64_t> digests;
+    if (verify || kept) {
+      const hsize_t width = h5::stack_width(g.get(), name);
+      const std::vector<double> data = h5::read_rows(g.get(), name, 0, rows);
+      digests.resize(rows);
+      for (hsize_t i = 0; i < rows; ++i) {
+        digests[i] = row_digest(std::span(data).subspan(i * width, width));
+        if (verify && i < it->second.size() && digests[i] != it->second[i]) bad[i] = 1;
+      }
+    }
+    const std::vector<double> nan_row(h5::stack_width(g.get(), name),
+                                      std::numeric_limits<double>::quiet_NaN());
+    for (hsize_t first = 0; first < rows;) {
+      if (!bad[first]) {
+        ++first;
+        continue;
+      }
+      hsize_t last = first;
+      while (last < rows && bad[last]) ++last;
       h5::fill_rows_nan(g.get(), name, first, last);
-      lost += (lost.empty() ? "/" : "; /") + group + "/" + name +
+      if (kept)
+        for (hsize_t i = first; i < last; ++i) digests[i] = row_digest(nan_row);
+      lost += (lost.empty() ? "/" : "; /") + key +
               (last == first + 1
                    ? " row " + std::to_string(first)
                    : " rows " + std::to_string(first) + "-" + std::to_string(last - 1));
+      first = last;
     }
+    if (kept) (*kept)[key] = std::move(digests);
+  }
   return lost;
 }
 
@@ -173,6 +211,7 @@ void RunOutput::append_series(const std::string& group, const std::string& name,
                               std::span<const double> row) {
   h5::Handle g = h5::open_group(file_.get(), group);
   h5::append_row(g.get(), name, row);
+  digests_[group + "/" + name].push_back(row_digest(row));
 }
 
 void RunOutput::add_field(const std::string& name, std::size_t width,
@@ -191,9 +230,11 @@ void RunOutput::write_snapshot(double t_yr,
     if (it == fields.end() || it->second.size() != (width == 0 ? 1 : width))
       throw IoError("snapshot field '" + name + "' missing or of the wrong length");
     h5::append_row(g.get(), name, it->second);
+    digests_["snapshots/" + name].push_back(row_digest(it->second));
   }
   const double t[1] = {t_yr};
   h5::append_row(g.get(), "time", t);
+  digests_["snapshots/time"].push_back(row_digest(t));
   ++n_snapshots_;
   flush();
 }

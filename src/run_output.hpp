@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "src/digest.hpp"
 #include "src/h5.hpp"
 
 namespace panoptic {
@@ -23,15 +24,23 @@ struct RunMetadata {
 };
 
 //! Continue the output of an interrupted run: keep its first `n_snapshots` snapshots.
+//! `digests`: the checkpoint's digests of the rows written up to it (empty for a
+//! checkpoint written before they were kept), to verify the kept rows against.
 struct ContinueRun {
   std::size_t n_snapshots = 0;
+  RowDigests digests;
 };
 
-//! Writes NaN into the rows below `rows` of every dataset of /<group> whose chunks the
-//! file no longer has (they would read back as 0: a writer killed while HDF5 flushed its
-//! unjournaled chunk index can lose rows flushed long before). Returns them, e.g.
-//! "/snapshots/St row 51", "; "-separated; "" when none.
-std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows);
+//! Writes NaN into the rows below `rows` of every dataset of /<group> that the file has
+//! lost or garbled: rows whose chunk the file no longer has (they would read back as 0),
+//! and rows whose digest differs from the one in `expected` (when it has the dataset):
+//! a writer killed while HDF5 flushed its unjournaled chunk index can lose rows flushed
+//! long before, or leave their index entries pointing at other data. Returns them, e.g.
+//! "/snapshots/St row 51", "; "-separated; "" when none. With `kept`, also stores there
+//! the digests of the rows below `rows` as they are now.
+std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows,
+                           const RowDigests* expected = nullptr,
+                           RowDigests* kept = nullptr);
 
 class RunOutput {
  public:
@@ -45,9 +54,16 @@ class RunOutput {
   //! in the file. IoError when the file is missing or holds fewer snapshots.
   RunOutput(const std::filesystem::path& path, ContinueRun keep);
   RunOutput(RunOutput&&) = default;
-  //! After a restart: the kept /snapshots rows the file had lost (their chunks gone, see
+  //! After a restart: the kept /snapshots rows the file had lost or garbled (see
   //! mark_lost_rows), now NaN; "" when none.
   const std::string& lost_rows() const { return lost_; }
+  //! After a restart: cuts nothing, but verifies the first `rows` rows of every dataset
+  //! of /<group> against the checkpoint's digests (mark_lost_rows), writes NaN into those
+  //! lost and returns them; the digests of the kept rows continue from there.
+  std::string keep_rows(const std::string& group, hsize_t rows);
+  //! Digests of every row of /snapshots and of the series written so far (kept rows
+  //! included after a restart), by "group/name": what a checkpoint records.
+  const RowDigests& row_digests() const { return digests_; }
   ~RunOutput();
 
   const std::filesystem::path& path() const { return path_; }
@@ -99,6 +115,8 @@ class RunOutput {
   std::size_t n_snapshots_ = 0;
   std::string lost_;
   std::string run_id_;
+  RowDigests digests_;          //!< of the rows in the file
+  RowDigests restart_digests_;  //!< the checkpoint's, to verify the kept rows
 };
 
 }  // namespace panoptic

@@ -49,6 +49,10 @@ Checkpoint sample(double scale = 1.0) {
   c.run_id = "0123456789abcdef";
   c.git_sha = "abc";
   c.version = "0.1.0";
+  c.row_digests["snapshots/sigma_d"] = {0x0123456789abcdefULL, 0xfedcba9876543210ULL,
+                                        static_cast<std::uint64_t>(scale * 1e6)};
+  c.row_digests["snapshots/time"] = {1, 2, 3};
+  c.row_digests["timeseries/m_through"] = {};
   return c;
 }
 
@@ -66,6 +70,7 @@ void expect_same(const Checkpoint& a, const Checkpoint& b) {
   EXPECT_EQ(a.wall_s, b.wall_s);
   EXPECT_EQ(a.output_file, b.output_file);
   EXPECT_EQ(a.run_id, b.run_id);
+  EXPECT_EQ(a.row_digests, b.row_digests);
 }
 
 //! A fresh directory under the build's temporary space, removed at the end.
@@ -149,6 +154,19 @@ TEST(CheckpointChecksum, ChangesWithAnyBitOfTheState) {
   d = c;
   d.config_toml[3] = 'X';
   EXPECT_NE(checkpoint_checksum(d), h) << "config_toml";
+  d = c;
+  d.row_digests["snapshots/time"][1] ^= 1;
+  EXPECT_NE(checkpoint_checksum(d), h) << "a row digest";
+  d = c;
+  d.row_digests["snapshots/time"].push_back(4);
+  EXPECT_NE(checkpoint_checksum(d), h) << "one more row digest";
+  // A checkpoint written before the digests were kept has none: its checksum is the
+  // one computed then, over the other fields only.
+  d = c;
+  d.row_digests.clear();
+  Checkpoint e = d;
+  e.row_digests["timeseries/m_through"] = {};
+  EXPECT_NE(checkpoint_checksum(e), checkpoint_checksum(d)) << "an empty digest list";
 }
 
 // ---------------------------------------------------------------------------------------
