@@ -1,8 +1,5 @@
 #include "src/checkpoint.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -11,6 +8,7 @@
 #include <cstring>
 
 #include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
+#include "src/durable_file.hpp"
 #include "src/error.hpp"
 #include "src/h5.hpp"
 #include "src/units.hpp"
@@ -48,30 +46,6 @@ std::string hex(std::uint64_t x) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(x));
   return buf;
-}
-
-std::string errno_text(int err) { return std::strerror(err); }
-
-// fsync of a file or a directory: the data (and, for a directory, the new name) is on
-// the disk before we go on, so that a power cut cannot leave a renamed but empty file.
-void fsync_path(const fs::path& path, bool directory) {
-  const int fd =
-      ::open(path.c_str(), O_RDONLY | O_CLOEXEC | (directory ? O_DIRECTORY : 0));
-  if (fd < 0)
-    throw IoError(path.string() + ": cannot open for fsync (" + errno_text(errno) + ")");
-  const int rc = ::fsync(fd);
-  const int err = errno;
-  ::close(fd);
-  // Some file systems cannot fsync a directory (EINVAL): the rename is still atomic.
-  if (rc != 0 && !(directory && err == EINVAL))
-    throw IoError(path.string() + ": fsync failed (" + errno_text(err) +
-                  "); is the disk full?");
-}
-
-void rename_or_throw(const fs::path& from, const fs::path& to) {
-  if (::rename(from.c_str(), to.c_str()) != 0)
-    throw IoError("cannot rename " + from.string() + " to " + to.string() + " (" +
-                  errno_text(errno) + ")");
 }
 
 void set_stats(hid_t group, const SolverStats& s) {

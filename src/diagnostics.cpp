@@ -61,34 +61,40 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
       "dust on grid, planetesimals (coagulation), planetesimals (SI), through "
       "r_in, sublimated, |sum - initial| (columns)");
   if (t_start > 0.0) {  // restart: keep what was sampled up to the checkpoint
-    h5::Handle g = h5::open_group(out_.file(), "timeseries");
-    const auto times = h5::read_doubles(g.get(), "time");
-    // The rows sampled up to the checkpoint: times rise (sample times are > 0 and one
-    // row per CVODE step at most). Stop at the first row that does not rise as well as
-    // at the first after t_start: a run killed while it cut the file (SIGKILL during an
-    // earlier restart) can leave rows read back as the fill value 0 after the valid
-    // ones, and those must not be kept (regression.test_restart_bitwise). Rows whose
-    // chunk is gone (a writer killed while HDF5 flushed its chunk index) are passed over
-    // here; they, and kept rows whose digest differs from the checkpoint's, are written
-    // as NaN below (RunOutput::keep_rows).
-    std::vector<char> gone(times.size(), 0);
-    for (const auto& [first, last] : h5::unallocated_rows(g.get(), "time", times.size()))
-      std::fill(gone.begin() + static_cast<long>(first),
-                gone.begin() + static_cast<long>(last), 1);
-    hsize_t keep = 0;
-    double previous = 0.0;
-    for (hsize_t i = 0; i < times.size(); ++i) {
-      if (gone[i]) continue;
-      if (!(times[i] > 0.0 && times[i] >= previous && times[i] * kYr <= t_start)) break;
-      previous = times[i];
-      keep = i + 1;
+    try {
+      h5::Handle g = h5::open_group(out_.file(), "timeseries");
+      const auto times = h5::read_doubles(g.get(), "time");
+      // The rows sampled up to the checkpoint: times rise (sample times are > 0 and one
+      // row per CVODE step at most). Stop at the first row that does not rise as well as
+      // at the first after t_start: a run killed while it cut the file (SIGKILL during an
+      // earlier restart) can leave rows read back as the fill value 0 after the valid
+      // ones, and those must not be kept (regression.test_restart_bitwise). Rows whose
+      // chunk is gone (a writer killed while HDF5 flushed its chunk index) are passed
+      // over here; they, and kept rows whose digest differs from the checkpoint's, are
+      // written as NaN below (RunOutput::keep_rows).
+      std::vector<char> gone(times.size(), 0);
+      for (const auto& [first, last] :
+           h5::unallocated_rows(g.get(), "time", times.size()))
+        std::fill(gone.begin() + static_cast<long>(first),
+                  gone.begin() + static_cast<long>(last), 1);
+      hsize_t keep = 0;
+      double previous = 0.0;
+      for (hsize_t i = 0; i < times.size(); ++i) {
+        if (gone[i]) continue;
+        if (!(times[i] > 0.0 && times[i] >= previous && times[i] * kYr <= t_start)) break;
+        previous = times[i];
+        keep = i + 1;
+      }
+      h5::truncate_stack(g.get(), "time", keep);  // time first: rows need a time
+      for (const char* name : {"pebble_flux", "m_through", "mass_budget"})
+        h5::truncate_stack(g.get(), name, keep);
+      lost_ = out_.keep_rows("timeseries", keep);
+      out_.flush();  // the cut on disk now, not at the first snapshot: a shorter window
+                     // in which a kill leaves the file half cut
+    } catch (const IoError& e) {
+      out_.throw_if_damaged(e);
+      throw;
     }
-    h5::truncate_stack(g.get(), "time", keep);  // time first: rows need a time
-    for (const char* name : {"pebble_flux", "m_through", "mass_budget"})
-      h5::truncate_stack(g.get(), name, keep);
-    lost_ = out_.keep_rows("timeseries", keep);
-    out_.flush();  // the cut on disk now, not at the first snapshot: a shorter window
-                   // in which a kill leaves the file half cut
     while (next_sample_ < sample_times_.size() && sample_times_[next_sample_] <= t_start)
       ++next_sample_;
     if (sim.planetesimals()) {

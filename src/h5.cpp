@@ -276,6 +276,54 @@ std::vector<std::uint64_t> read_u64s(hid_t parent, const std::string& name) {
   return out;
 }
 
+void copy_file(const std::string& from, const std::string& to) {
+  Handle src = open_file(from, false);
+  Handle dst = create_file(to);
+  H5G_info_t info;
+  ok(H5Gget_info(src.get(), &info), "listing", from);
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t len = H5Lget_name_by_idx(src.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i,
+                                           nullptr, 0, H5P_DEFAULT);
+    if (len < 0) throw IoError("HDF5: listing " + from + " failed");
+    std::string name(static_cast<std::size_t>(len) + 1, '\0');
+    H5Lget_name_by_idx(src.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+                       name.size(), H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(len));
+    ok(H5Ocopy(src.get(), name.c_str(), dst.get(), name.c_str(), H5P_DEFAULT,
+               H5P_DEFAULT),
+       "copying", name + " of " + from);
+  }
+  // The root's attributes (H5Ocopy copies those of the objects it copies): raw bytes
+  // with their own type and dataspace (panoptic writes fixed-length strings and numbers).
+  std::vector<std::string> names;
+  const auto collect = [](hid_t, const char* name, const H5A_info_t*,
+                          void* data) -> herr_t {
+    static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+    return 0;
+  };
+  ok(H5Aiterate2(src.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names),
+     "listing the attributes of", from);
+  for (const std::string& name : names) {
+    Handle a(
+        ok(H5Aopen(src.get(), name.c_str(), H5P_DEFAULT), "opening attribute " + name),
+        H5Aclose);
+    Handle type(ok(H5Aget_type(a.get()), "type of attribute " + name), H5Tclose);
+    Handle space(ok(H5Aget_space(a.get()), "dataspace of attribute " + name), H5Sclose);
+    if (H5Tis_variable_str(type.get()) > 0)
+      throw IoError("HDF5: attribute " + name + " of " + from +
+                    " is a variable-length string, which panoptic does not write");
+    const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+    std::vector<char> bytes(static_cast<std::size_t>(n) * H5Tget_size(type.get()) + 1);
+    ok(H5Aread(a.get(), type.get(), bytes.data()), "reading attribute", name);
+    Handle b(ok(H5Acreate2(dst.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT,
+                           H5P_DEFAULT),
+                "creating attribute " + name),
+             H5Aclose);
+    ok(H5Awrite(b.get(), type.get(), bytes.data()), "writing attribute", name);
+  }
+  ok(H5Fflush(dst.get(), H5F_SCOPE_GLOBAL), "flushing", to);
+}
+
 void set_attr(hid_t obj, const std::string& name, const std::string& value) {
   if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
   Handle type(ok(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);

@@ -85,6 +85,13 @@ double get_attr_double(hid_t obj, const std::string& name);
 long get_attr_long(hid_t obj, const std::string& name);
 bool has_attr(hid_t obj, const std::string& name);
 
+//! Writes a new file `to` (replacing one there) with every object under the root of
+//! `from` and the root's attributes. H5Ocopy rebuilds every dataset with a new chunk
+//! index, from the chunks the old index reaches: a file whose index a killed writer left
+//! inconsistent is copied into a consistent one (rows the old index had lost stay
+//! unallocated).
+void copy_file(const std::string& from, const std::string& to);
+
 //! Silences HDF5's own error stack printing (we throw IoError with our own message).
 void quiet_errors();
 

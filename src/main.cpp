@@ -215,6 +215,9 @@ int run(const RunArgs& a) {
   };
   Checkpoint last = record(times.front(), y0, index0);
   RunDiagnostics diag(sim, out, restart ? times.front() : 0.0);
+  if (restart && !out.rebuild_note().empty())
+    std::fprintf(stderr, "panoptic: warning: %s: %s\n", out.path().c_str(),
+                 out.rebuild_note().c_str());
   if (restart) {  // rows the file lost before this restart: said aloud and recorded
     std::string lost = out.lost_rows();
     if (!diag.lost_rows().empty()) lost += (lost.empty() ? "" : "; ") + diag.lost_rows();

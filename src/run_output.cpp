@@ -1,12 +1,18 @@
 #include "src/run_output.hpp"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <random>
+#include <string_view>
 
 #include "src/cvode_integrator.hpp"
+#include "src/durable_file.hpp"
 #include "src/error.hpp"
 
 namespace panoptic {
@@ -23,6 +29,53 @@ std::string new_run_id() {
     id += buf;
   }
   return id;
+}
+
+// A restart continues a fresh copy of its output, not the file as the stopped run left
+// it (README "Restart"): a writer killed while HDF5 flushed the file can leave a chunk
+// index inconsistent, and a run that appends to it can lose rows it writes itself
+// (regression.test_restart_killed under load: a restart that completed had rows 51-55,
+// the first it wrote, unallocated). h5::copy_file rebuilds every dataset with a new
+// index; the copy replaces the file atomically (written beside it, fsynced, renamed).
+// HDF5 1.10 can crash (SIGSEGV in H5Ocopy) on a file damaged badly enough, so the copy
+// runs in a child process: a crash there costs the rebuild, not the restart.
+// Returns "" or, when the copy fails, why: the file is then continued in place.
+std::string rebuild(const std::filesystem::path& path) {
+  const std::filesystem::path tmp = path.string() + ".restart.tmp";
+  std::error_code ec;
+  std::filesystem::remove(tmp, ec);  // left by a restart killed while copying
+  std::fflush(nullptr);
+  const pid_t child = ::fork();
+  if (child == 0) {  // the copy, fsynced; the exit code says whether it is whole
+    int code = 0;
+    try {
+      h5::copy_file(path.string(), tmp.string());
+      fsync_path(tmp, false);
+    } catch (...) {
+      code = 1;
+    }
+    ::_exit(code);
+  }
+  int status = 0;
+  if (child < 0 || ::waitpid(child, &status, 0) != child)
+    return "could not rebuild it (no process for the copy); continued in place";
+  std::string why;
+  if (WIFSIGNALED(status))
+    why = std::string("HDF5 crashed copying it (") + ::strsignal(WTERMSIG(status)) + ")";
+  else if (WEXITSTATUS(status) != 0)
+    why = "HDF5 could not copy it";
+  if (why.empty()) {
+    try {
+      rename_or_throw(tmp, path);
+      fsync_path(path.has_parent_path() ? path.parent_path() : ".", true);
+      return "";
+    } catch (const IoError& e) {
+      why = e.what();
+    }
+  }
+  std::filesystem::remove(tmp, ec);
+  return "could not rebuild it as a fresh copy (" + why +
+         ": the file is damaged); continued in place";
 }
 
 }  // namespace
@@ -63,6 +116,7 @@ RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path
     throw IoError(path.string() +
                   ": the output file of the checkpoint does not exist; pass the run's "
                   "output file with -o");
+  rebuild_note_ = rebuild(path);
   try {
     file_ = h5::open_file(path.string(), true);
   } catch (const IoError&) {
@@ -72,34 +126,49 @@ RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path
   }
   if (h5::has_attr(file_.get(), "run_id"))
     run_id_ = h5::get_attr_string(file_.get(), "run_id");
-  h5::Handle g = h5::open_group(file_.get(), "snapshots");
-  const auto have = static_cast<std::size_t>(h5::stack_rows(g.get(), "time"));
-  if (have < keep.n_snapshots)
-    throw IoError(path.string() + ": holds " + std::to_string(have) +
-                  " snapshots, but the checkpoint was taken after " +
-                  std::to_string(keep.n_snapshots) +
-                  ": this is not the output of that checkpoint's run; pass the right "
-                  "file with -o");
-  for (const std::string& name : h5::dataset_names(g.get())) {
-    if (h5::stack_rows(g.get(), name) < keep.n_snapshots)
-      throw IoError(path.string() + ": /snapshots/" + name + " has fewer rows than the " +
-                    std::to_string(keep.n_snapshots) + " snapshots of the checkpoint");
-    // Time first: a reader trusts only rows that have a time.
-    if (name == "time") h5::truncate_stack(g.get(), name, keep.n_snapshots);
+  try {
+    h5::Handle g = h5::open_group(file_.get(), "snapshots");
+    const auto have = static_cast<std::size_t>(h5::stack_rows(g.get(), "time"));
+    if (have < keep.n_snapshots)
+      throw IoError(path.string() + ": holds " + std::to_string(have) +
+                    " snapshots, but the checkpoint was taken after " +
+                    std::to_string(keep.n_snapshots) +
+                    ": this is not the output of that checkpoint's run; pass the right "
+                    "file with -o");
+    for (const std::string& name : h5::dataset_names(g.get())) {
+      if (h5::stack_rows(g.get(), name) < keep.n_snapshots)
+        throw IoError(path.string() + ": /snapshots/" + name +
+                      " has fewer rows than the " + std::to_string(keep.n_snapshots) +
+                      " snapshots of the checkpoint");
+      // Time first: a reader trusts only rows that have a time.
+      if (name == "time") h5::truncate_stack(g.get(), name, keep.n_snapshots);
+    }
+    for (const std::string& name : h5::dataset_names(g.get())) {
+      if (name == "time") continue;
+      h5::truncate_stack(g.get(), name, keep.n_snapshots);
+      h5::Handle ds(H5Dopen2(g.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+      h5::Handle space(H5Dget_space(ds.get()), H5Sclose);
+      std::array<hsize_t, 2> dims{0, 0};
+      const int rank = H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+      fields_[name] = rank == 2 ? dims[1] : 0;
+    }
+    n_snapshots_ = keep.n_snapshots;
+    restart_digests_ = std::move(keep.digests);
+    lost_ = keep_rows("snapshots", keep.n_snapshots);
+    flush();
+  } catch (const IoError& e) {
+    throw_if_damaged(e);
+    throw;
   }
-  for (const std::string& name : h5::dataset_names(g.get())) {
-    if (name == "time") continue;
-    h5::truncate_stack(g.get(), name, keep.n_snapshots);
-    h5::Handle ds(H5Dopen2(g.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
-    h5::Handle space(H5Dget_space(ds.get()), H5Sclose);
-    std::array<hsize_t, 2> dims{0, 0};
-    const int rank = H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-    fields_[name] = rank == 2 ? dims[1] : 0;
-  }
-  n_snapshots_ = keep.n_snapshots;
-  restart_digests_ = std::move(keep.digests);
-  lost_ = keep_rows("snapshots", keep.n_snapshots);
-  flush();
+}
+
+void RunOutput::throw_if_damaged(const IoError& e) const {
+  // HDF5's own failures on a damaged file (ours name the file already)
+  if (!std::string_view(e.what()).starts_with("HDF5:")) return;
+  throw IoError(path_.string() +
+                ": the output file is damaged and cannot be continued (" + e.what() +
+                (rebuild_note_.empty() ? "" : "; " + rebuild_note_) +
+                "); start the run again (--overwrite, or -o another file)");
 }
 
 std::string RunOutput::keep_rows(const std::string& group, hsize_t rows) {

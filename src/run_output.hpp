@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "src/digest.hpp"
+#include "src/error.hpp"
 #include "src/h5.hpp"
 
 namespace panoptic {
@@ -48,7 +49,8 @@ class RunOutput {
   //! `overwrite`: a run never silently replaces data. The file gets a fresh random
   //! root attribute run_id, which its checkpoints record.
   RunOutput(const std::filesystem::path& path, bool overwrite, const RunMetadata& meta);
-  //! Reopens an existing output read-write to continue it (restart): every /snapshots
+  //! Reopens an existing output read-write to continue it (restart), after replacing it
+  //! by a fresh copy of itself (rebuild_note): every /snapshots
   //! stack is cut to its first `keep.n_snapshots` rows (rows after them were written
   //! after the checkpoint and will be written again) and the declared fields are those
   //! in the file. IoError when the file is missing or holds fewer snapshots.
@@ -57,6 +59,14 @@ class RunOutput {
   //! After a restart: the kept /snapshots rows the file had lost or garbled (see
   //! mark_lost_rows), now NaN; "" when none.
   const std::string& lost_rows() const { return lost_; }
+  //! After a restart: "" when the file was rebuilt as a fresh copy before it was
+  //! continued (run_output.cpp, rebuild), else why it could not be (it is then continued
+  //! in place).
+  const std::string& rebuild_note() const { return rebuild_note_; }
+  //! After a restart: when `e` is HDF5's own failure on this file (the file is damaged
+  //! beyond what a restart repairs), throws an IoError that says so, names the file and
+  //! the fix; otherwise returns (the caller rethrows `e`).
+  void throw_if_damaged(const IoError& e) const;
   //! After a restart: cuts nothing, but verifies the first `rows` rows of every dataset
   //! of /<group> against the checkpoint's digests (mark_lost_rows), writes NaN into those
   //! lost and returns them; the digests of the kept rows continue from there.
@@ -115,6 +125,7 @@ class RunOutput {
   std::size_t n_snapshots_ = 0;
   std::string lost_;
   std::string run_id_;
+  std::string rebuild_note_;
   RowDigests digests_;          //!< of the rows in the file
   RowDigests restart_digests_;  //!< the checkpoint's, to verify the kept rows
 };

@@ -28,7 +28,8 @@ def launch(exe, out, restart=None):
     cmd += ["--restart", restart] if restart else ["--overwrite"]
     for s in SETS:
         cmd += ["--set", s]
-    return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True)
 
 
 def kill_at_random(proc, chk, rng, wall, frac=0.5):
@@ -78,8 +79,14 @@ def main():
             # Kill the restarted run too: its checkpoints continue the first run's. When
             # the first kill came late, the restart may finish before its own kill: then
             # its output is compared as it is (there is nothing left to restart).
-            finished = not kill_at_random(launch(args.exe, out, restart=chk), chk, rng,
-                                          wall)
+            proc = launch(args.exe, out, restart=chk)
+            finished = not kill_at_random(proc, chk, rng, wall)
+            if finished and proc.returncode != 0:
+                # It did not finish: it stopped. A restart refuses an output file that
+                # a kill damaged beyond repair (README "Restart"), with a message.
+                c.check(False, f"trial {trial}: the restart before the second kill "
+                               f"exited {proc.returncode}: {proc.stderr.read().strip()}")
+                continue
         n_file = rows(out)
         k = checkpoint_attrs(chk)["snapshot_index"]
         print(f"trial {trial}: killed with {n_file} snapshots in the file, last checkpoint "

@@ -107,3 +107,64 @@ TEST(H5RoundTrip, StaticDatasetIsReplacedNotDuplicated) {
   h5::Handle g = h5::open_group(f.get(), "summary");
   EXPECT_EQ(h5::read_doubles(g.get(), "m"), (std::vector<double>{2.0}));
 }
+
+TEST(H5RoundTrip, CopyFileKeepsEveryRowAttributeAndLostChunk) {
+  // A restart continues h5::copy_file's copy of its output (run_output.cpp, rebuild):
+  // every dataset, every attribute (the root's too) must come across bit for bit, and a
+  // row whose chunk the original has lost must stay lost (unallocated) in the copy, so
+  // that the restart still finds it.
+  const fs::path path = temp_file("copy_from.h5"), copy = temp_file("copy_to.h5");
+  const std::vector<double> row0{1.5, -0.0, 1e-300}, row2{3.0, 4.0, 5.0};
+  {
+    RunOutput out(path, false, {"scene_c", "[grid]\nn_cells = 3\n", "sha", "1.0"});
+    out.write_static("grid", "r_c", std::vector<double>{1.0, 2.0, 3.0}, "au", "centres");
+    out.add_field("sigma_d", 3, "g cm^-2", "dust");
+    out.write_snapshot(0.0, {{"sigma_d", row0}});
+    out.write_snapshot(1.0, {{"sigma_d", row2}});
+    out.set_root_attr("restarts", "a note");
+    h5::set_attr(out.file(), "a_double", 2.5);
+    h5::set_attr(out.file(), "a_long", 7L);
+    // A stack whose middle row was never written: its chunk is not allocated.
+    h5::Handle g = h5::open_group(out.file(), "snapshots");
+    h5::create_stack(g.get(), "gappy", 3, "-", "rows 0 and 2 only");
+    h5::append_row(g.get(), "gappy", row0);
+    const hsize_t dims[2] = {3, 3};
+    h5::Handle ds(H5Dopen2(g.get(), "gappy", H5P_DEFAULT), H5Dclose);
+    ASSERT_GE(H5Dset_extent(ds.get(), dims), 0);
+    h5::Handle space(H5Dget_space(ds.get()), H5Sclose);
+    const hsize_t start[2] = {2, 0}, count[2] = {1, 3};
+    H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr);
+    const hsize_t n[1] = {3};
+    h5::Handle mem(H5Screate_simple(1, n, nullptr), H5Sclose);
+    ASSERT_GE(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, mem.get(), space.get(), H5P_DEFAULT,
+                       row2.data()),
+              0);
+    out.flush();
+  }
+  h5::copy_file(path.string(), copy.string());
+  h5::Handle a = h5::open_file(path.string(), false),
+             b = h5::open_file(copy.string(), false);
+  for (const char* name :
+       {"run_id", "scene", "config_toml", "git_sha", "version", "restarts"})
+    EXPECT_EQ(h5::get_attr_string(b.get(), name), h5::get_attr_string(a.get(), name))
+        << name;
+  EXPECT_EQ(h5::get_attr_double(b.get(), "a_double"), 2.5);
+  EXPECT_EQ(h5::get_attr_long(b.get(), "a_long"), 7);
+  h5::Handle ga = h5::open_group(a.get(), "snapshots"),
+             gb = h5::open_group(b.get(), "snapshots");
+  for (const char* name : {"time", "sigma_d", "gappy"}) {
+    const auto x = h5::read_doubles(ga.get(), name), y = h5::read_doubles(gb.get(), name);
+    ASSERT_EQ(x.size(), y.size()) << name;
+    EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(double)), 0) << name;
+  }
+  EXPECT_EQ(h5::stack_rows(gb.get(), "sigma_d"), 2u);
+  {
+    h5::Handle ds(H5Dopen2(gb.get(), "sigma_d", H5P_DEFAULT), H5Dclose);
+    EXPECT_EQ(h5::get_attr_string(ds.get(), "units"), "g cm^-2");
+  }
+  using Ranges = std::vector<std::pair<hsize_t, hsize_t>>;
+  EXPECT_EQ(h5::unallocated_rows(ga.get(), "gappy", 3), (Ranges{{1, 2}}));
+  EXPECT_EQ(h5::unallocated_rows(gb.get(), "gappy", 3), (Ranges{{1, 2}}));
+  EXPECT_EQ(h5::read_doubles(h5::open_group(b.get(), "grid").get(), "r_c"),
+            (std::vector<double>{1.0, 2.0, 3.0}));
+}

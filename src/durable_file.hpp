@@ -1,0 +1,15 @@
+#pragma once
+//! Files that survive a crash: fsync of a file or a directory, and rename, each throwing
+//! IoError naming the path (checkpoints, and the output a restart rebuilds).
+#include <filesystem>
+
+namespace panoptic {
+
+//! fsync of a file, or of a directory (so that a rename in it is on the disk); some file
+//! systems cannot fsync a directory (EINVAL), which is accepted: the rename is still
+//! atomic.
+void fsync_path(const std::filesystem::path& path, bool directory);
+//! rename(2): atomic replacement of `to` by `from` on the same file system.
+void rename_or_throw(const std::filesystem::path& from, const std::filesystem::path& to);
+
+}  // namespace panoptic
