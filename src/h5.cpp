@@ -276,51 +276,141 @@ std::vector<std::uint64_t> read_u64s(hid_t parent, const std::string& name) {
   return out;
 }
 
-void copy_file(const std::string& from, const std::string& to) {
-  Handle src = open_file(from, false);
-  Handle dst = create_file(to);
+namespace {
+
+//! Names of the links (objects) directly under a group or file, in name order.
+std::vector<std::string> link_names(hid_t group) {
   H5G_info_t info;
-  ok(H5Gget_info(src.get(), &info), "listing", from);
+  ok(H5Gget_info(group, &info), "listing", "group");
+  std::vector<std::string> names;
   for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t len = H5Lget_name_by_idx(src.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i,
+    const ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i,
                                            nullptr, 0, H5P_DEFAULT);
-    if (len < 0) throw IoError("HDF5: listing " + from + " failed");
+    if (len < 0) throw IoError("HDF5: listing a group failed");
     std::string name(static_cast<std::size_t>(len) + 1, '\0');
-    H5Lget_name_by_idx(src.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
                        name.size(), H5P_DEFAULT);
     name.resize(static_cast<std::size_t>(len));
-    ok(H5Ocopy(src.get(), name.c_str(), dst.get(), name.c_str(), H5P_DEFAULT,
-               H5P_DEFAULT),
-       "copying", name + " of " + from);
+    names.push_back(std::move(name));
   }
-  // The root's attributes (H5Ocopy copies those of the objects it copies): raw bytes
-  // with their own type and dataspace (panoptic writes fixed-length strings and numbers).
+  return names;
+}
+
+//! Every attribute of `src` onto `dst`: raw bytes with their own type and dataspace
+//! (panoptic writes fixed-length strings and numbers).
+void copy_attributes(hid_t src, hid_t dst) {
   std::vector<std::string> names;
   const auto collect = [](hid_t, const char* name, const H5A_info_t*,
                           void* data) -> herr_t {
     static_cast<std::vector<std::string>*>(data)->emplace_back(name);
     return 0;
   };
-  ok(H5Aiterate2(src.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names),
-     "listing the attributes of", from);
+  ok(H5Aiterate2(src, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names),
+     "listing the attributes of", "an object");
   for (const std::string& name : names) {
-    Handle a(
-        ok(H5Aopen(src.get(), name.c_str(), H5P_DEFAULT), "opening attribute " + name),
-        H5Aclose);
+    Handle a(ok(H5Aopen(src, name.c_str(), H5P_DEFAULT), "opening attribute " + name),
+             H5Aclose);
     Handle type(ok(H5Aget_type(a.get()), "type of attribute " + name), H5Tclose);
     Handle space(ok(H5Aget_space(a.get()), "dataspace of attribute " + name), H5Sclose);
     if (H5Tis_variable_str(type.get()) > 0)
-      throw IoError("HDF5: attribute " + name + " of " + from +
+      throw IoError("HDF5: attribute " + name +
                     " is a variable-length string, which panoptic does not write");
     const hssize_t n = H5Sget_simple_extent_npoints(space.get());
     std::vector<char> bytes(static_cast<std::size_t>(n) * H5Tget_size(type.get()) + 1);
     ok(H5Aread(a.get(), type.get(), bytes.data()), "reading attribute", name);
-    Handle b(ok(H5Acreate2(dst.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT,
+    Handle b(ok(H5Acreate2(dst, name.c_str(), type.get(), space.get(), H5P_DEFAULT,
                            H5P_DEFAULT),
                 "creating attribute " + name),
              H5Aclose);
     ok(H5Awrite(b.get(), type.get(), bytes.data()), "writing attribute", name);
   }
+}
+
+//! Dataset `name` of group `src` into group `dst`: same type, shape, maximum shape and
+//! creation properties (chunking), a new chunk index. A chunked dataset is copied one
+//! chunk row at a time; a chunk the source has lost, or that HDF5 cannot read back, is
+//! left unallocated in the copy (it reads as the fill value there, where the restart
+//! finds it: mark_lost_rows).
+void copy_dataset(hid_t src, hid_t dst, const std::string& name) {
+  Handle ds(ok(H5Dopen2(src, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
+            H5Dclose);
+  Handle type(ok(H5Dget_type(ds.get()), "type of " + name), H5Tclose);
+  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
+  Handle dcpl(ok(H5Dget_create_plist(ds.get()), "creation properties of " + name),
+              H5Pclose);
+  Handle out(ok(H5Dcreate2(dst, name.c_str(), type.get(), space.get(), H5P_DEFAULT,
+                           dcpl.get(), H5P_DEFAULT),
+                "creating dataset " + name),
+             H5Dclose);
+  copy_attributes(ds.get(), out.get());
+  const std::size_t tsize = H5Tget_size(type.get());
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (H5Pget_layout(dcpl.get()) != H5D_CHUNKED || rank < 1 || rank > 2) {
+    const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+    std::vector<char> bytes(static_cast<std::size_t>(n) * tsize + 1);
+    if (n > 0) {
+      ok(H5Dread(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()),
+         "reading", name);
+      ok(H5Dwrite(out.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()),
+         "writing", name);
+    }
+    return;
+  }
+  std::array<hsize_t, 2> dims{0, 1}, chunk{1, 1};
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  H5Pget_chunk(dcpl.get(), 2, chunk.data());
+  const hsize_t width = rank == 2 ? dims[1] : 1, step = chunk[0] > 0 ? chunk[0] : 1;
+  Handle fspace(ok(H5Dget_space(out.get()), "dataspace of " + name), H5Sclose);
+  for (hsize_t first = 0; first < dims[0]; first += step) {
+    const hsize_t last = std::min(first + step, dims[0]);
+    std::array<hsize_t, 2> offset{first, 0};
+    unsigned filter_mask = 0;
+    haddr_t addr = HADDR_UNDEF;
+    hsize_t size = 0;
+    if (H5Dget_chunk_info_by_coord(ds.get(), offset.data(), &filter_mask, &addr, &size) <
+            0 ||
+        addr == HADDR_UNDEF)
+      continue;
+    const std::array<hsize_t, 2> start{first, 0}, count{last - first, width};
+    ok(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr,
+                           count.data(), nullptr),
+       "selecting", name);
+    ok(H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start.data(), nullptr,
+                           count.data(), nullptr),
+       "selecting", name);
+    const hsize_t n[1] = {(last - first) * width};
+    Handle mspace(ok(H5Screate_simple(1, n, nullptr), "dataspace"), H5Sclose);
+    std::vector<char> bytes(n[0] * tsize);
+    if (H5Dread(ds.get(), type.get(), mspace.get(), space.get(), H5P_DEFAULT,
+                bytes.data()) < 0)
+      continue;  // unreadable: left unallocated in the copy
+    ok(H5Dwrite(out.get(), type.get(), mspace.get(), fspace.get(), H5P_DEFAULT,
+                bytes.data()),
+       "writing", name);
+  }
+}
+
+//! Every group and dataset under `src` into `dst`, with their attributes.
+void copy_group(hid_t src, hid_t dst) {
+  copy_attributes(src, dst);
+  for (const std::string& name : link_names(src)) {
+    Handle obj(ok(H5Oopen(src, name.c_str(), H5P_DEFAULT), "opening " + name), H5Oclose);
+    const H5I_type_t kind = H5Iget_type(obj.get());
+    if (kind == H5I_GROUP) {
+      Handle g = create_group(dst, name);
+      copy_group(obj.get(), g.get());
+    } else if (kind == H5I_DATASET) {
+      copy_dataset(src, dst, name);
+    }
+  }
+}
+
+}  // namespace
+
+void copy_file(const std::string& from, const std::string& to) {
+  Handle src = open_file(from, false);
+  Handle dst = create_file(to);
+  copy_group(src.get(), dst.get());
   ok(H5Fflush(dst.get(), H5F_SCOPE_GLOBAL), "flushing", to);
 }
 

@@ -85,11 +85,11 @@ double get_attr_double(hid_t obj, const std::string& name);
 long get_attr_long(hid_t obj, const std::string& name);
 bool has_attr(hid_t obj, const std::string& name);
 
-//! Writes a new file `to` (replacing one there) with every object under the root of
-//! `from` and the root's attributes. H5Ocopy rebuilds every dataset with a new chunk
-//! index, from the chunks the old index reaches: a file whose index a killed writer left
-//! inconsistent is copied into a consistent one (rows the old index had lost stay
-//! unallocated).
+//! Writes a new file `to` (replacing one there) with every group and dataset of `from`
+//! and every attribute, each dataset with a new chunk index, copied chunk row by chunk
+//! row from the chunks the old index reaches: a file whose index a killed writer left
+//! inconsistent is copied into a consistent one. Rows the old index had lost, or that
+//! HDF5 cannot read back, stay unallocated in the copy.
 void copy_file(const std::string& from, const std::string& to);
 
 //! Silences HDF5's own error stack printing (we throw IoError with our own message).
