@@ -37,8 +37,9 @@ std::string new_run_id() {
 // (regression.test_restart_killed under load: a restart that completed had rows 51-55,
 // the first it wrote, unallocated). h5::copy_file rebuilds every dataset with a new
 // index; the copy replaces the file atomically (written beside it, fsynced, renamed).
-// HDF5 1.10 can crash (SIGSEGV in H5Ocopy) on a file damaged badly enough, so the copy
-// runs in a child process: a crash there costs the rebuild, not the restart.
+// HDF5 1.10 can crash on a file damaged badly enough (H5Ocopy did, with SIGSEGV, before
+// copy_file copied dataset by dataset), so the copy runs in a child process: a crash
+// there costs the rebuild, not the restart.
 // Returns "" or, when the copy fails, why: the file is then continued in place.
 std::string rebuild(const std::filesystem::path& path) {
   const std::filesystem::path tmp = path.string() + ".restart.tmp";
