@@ -42,6 +42,24 @@ Stack open_stack(hid_t parent, const std::string& name) {
   return st;
 }
 
+//! Names of the links (objects) directly under a group or file, in name order.
+std::vector<std::string> link_names(hid_t group) {
+  H5G_info_t info;
+  ok(H5Gget_info(group, &info), "listing", "group");
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i,
+                                           nullptr, 0, H5P_DEFAULT);
+    if (len < 0) throw IoError("HDF5: listing a group failed");
+    std::string name(static_cast<std::size_t>(len) + 1, '\0');
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+                       name.size(), H5P_DEFAULT);
+    name.resize(static_cast<std::size_t>(len));
+    names.push_back(std::move(name));
+  }
+  return names;
+}
+
 }  // namespace
 
 Handle& Handle::operator=(Handle&& o) noexcept {
@@ -194,21 +212,12 @@ void fill_rows_nan(hid_t parent, const std::string& name, hsize_t first, hsize_t
 }
 
 std::vector<std::string> dataset_names(hid_t group) {
-  H5G_info_t info;
-  ok(H5Gget_info(group, &info), "listing", "group");
   std::vector<std::string> names;
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i,
-                                           nullptr, 0, H5P_DEFAULT);
-    if (len < 0) throw IoError("HDF5: listing a group failed");
-    std::string name(static_cast<std::size_t>(len) + 1, '\0');
-    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
-                       name.size(), H5P_DEFAULT);
-    name.resize(static_cast<std::size_t>(len));
+  for (std::string& name : link_names(group)) {
     // H5Oopen + H5Iget_type: the same call in every HDF5 API version.
     const hid_t obj = H5Oopen(group, name.c_str(), H5P_DEFAULT);
     if (obj < 0) continue;
-    if (H5Iget_type(obj) == H5I_DATASET) names.push_back(name);
+    if (H5Iget_type(obj) == H5I_DATASET) names.push_back(std::move(name));
     H5Oclose(obj);
   }
   return names;
@@ -277,24 +286,6 @@ std::vector<std::uint64_t> read_u64s(hid_t parent, const std::string& name) {
 }
 
 namespace {
-
-//! Names of the links (objects) directly under a group or file, in name order.
-std::vector<std::string> link_names(hid_t group) {
-  H5G_info_t info;
-  ok(H5Gget_info(group, &info), "listing", "group");
-  std::vector<std::string> names;
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i,
-                                           nullptr, 0, H5P_DEFAULT);
-    if (len < 0) throw IoError("HDF5: listing a group failed");
-    std::string name(static_cast<std::size_t>(len) + 1, '\0');
-    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
-                       name.size(), H5P_DEFAULT);
-    name.resize(static_cast<std::size_t>(len));
-    names.push_back(std::move(name));
-  }
-  return names;
-}
 
 //! Every attribute of `src` onto `dst`: raw bytes with their own type and dataspace
 //! (panoptic writes fixed-length strings and numbers).
