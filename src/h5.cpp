@@ -60,6 +60,47 @@ std::vector<std::string> link_names(hid_t group) {
   return names;
 }
 
+//! A whole 1-D dataset `name` of `n` values of `mem_type` at `data`, stored as
+//! `file_type` (write_vector, write_u64s).
+Handle write_array(hid_t parent, const std::string& name, hid_t file_type, hid_t mem_type,
+                   const void* data, hsize_t n) {
+  const hsize_t dims[1] = {n};
+  Handle space(ok(H5Screate_simple(1, dims, nullptr), "dataspace"), H5Sclose);
+  Handle ds(ok(H5Dcreate2(parent, name.c_str(), file_type, space.get(), H5P_DEFAULT,
+                          H5P_DEFAULT, H5P_DEFAULT),
+               "creating dataset " + name),
+            H5Dclose);
+  if (n > 0)
+    ok(H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "writing",
+       name);
+  return ds;
+}
+
+//! Every value of dataset `name` (any rank, flattened) as `mem_type` (read_doubles,
+//! read_u64s).
+template <class T>
+std::vector<T> read_array(hid_t parent, const std::string& name, hid_t mem_type) {
+  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
+            H5Dclose);
+  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<T> out(static_cast<std::size_t>(n));
+  if (n > 0)
+    ok(H5Dread(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), "reading",
+       name);
+  return out;
+}
+
+//! The file address of the chunk of dataset `ds` that holds row `row`: HADDR_UNDEF when
+//! the chunk is not allocated; a negative status when HDF5 cannot read its index.
+herr_t chunk_address(hid_t ds, hsize_t row, haddr_t* addr) {
+  std::array<hsize_t, 2> offset{row, 0};
+  unsigned filter_mask = 0;
+  hsize_t size = 0;
+  *addr = HADDR_UNDEF;
+  return H5Dget_chunk_info_by_coord(ds, offset.data(), &filter_mask, addr, &size);
+}
+
 }  // namespace
 
 Handle& Handle::operator=(Handle&& o) noexcept {
@@ -112,14 +153,8 @@ bool exists(hid_t parent, const std::string& path) {
 
 void write_vector(hid_t parent, const std::string& name, std::span<const double> data,
                   const std::string& units, const std::string& description) {
-  const hsize_t dims[1] = {data.size()};
-  Handle space(ok(H5Screate_simple(1, dims, nullptr), "dataspace"), H5Sclose);
-  Handle ds(ok(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
-                          H5P_DEFAULT, H5P_DEFAULT),
-               "creating dataset " + name),
-            H5Dclose);
-  ok(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-     "writing", name);
+  const Handle ds = write_array(parent, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                                data.data(), data.size());
   describe(ds.get(), units, description);
 }
 
@@ -180,12 +215,8 @@ std::vector<std::pair<hsize_t, hsize_t>> unallocated_rows(hid_t parent,
   const int rank = H5Pget_chunk(dcpl.get(), 2, chunk.data());
   if (rank < 1 || chunk[0] == 0) return lost;
   for (hsize_t first = 0; first < rows; first += chunk[0]) {
-    std::array<hsize_t, 2> offset{first, 0};
-    unsigned filter_mask = 0;
     haddr_t addr = HADDR_UNDEF;
-    hsize_t size = 0;
-    ok(H5Dget_chunk_info_by_coord(ds.get(), offset.data(), &filter_mask, &addr, &size),
-       "chunk index of", name);
+    ok(chunk_address(ds.get(), first, &addr), "chunk index of", name);
     if (addr != HADDR_UNDEF) continue;
     const hsize_t last = std::min(first + chunk[0], rows);
     if (!lost.empty() && lost.back().second == first)
@@ -224,15 +255,7 @@ std::vector<std::string> dataset_names(hid_t group) {
 }
 
 std::vector<double> read_doubles(hid_t parent, const std::string& name) {
-  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
-            H5Dclose);
-  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
-  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
-  std::vector<double> out(static_cast<std::size_t>(n));
-  if (n > 0)
-    ok(H5Dread(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
-       "reading", name);
-  return out;
+  return read_array<double>(parent, name, H5T_NATIVE_DOUBLE);
 }
 
 std::vector<double> read_rows(hid_t parent, const std::string& name, hsize_t first,
@@ -262,27 +285,11 @@ hsize_t stack_width(hid_t parent, const std::string& name) {
 
 void write_u64s(hid_t parent, const std::string& name,
                 std::span<const std::uint64_t> data) {
-  const hsize_t dims[1] = {data.size()};
-  Handle space(ok(H5Screate_simple(1, dims, nullptr), "dataspace"), H5Sclose);
-  Handle ds(ok(H5Dcreate2(parent, name.c_str(), H5T_STD_U64LE, space.get(), H5P_DEFAULT,
-                          H5P_DEFAULT, H5P_DEFAULT),
-               "creating dataset " + name),
-            H5Dclose);
-  if (!data.empty())
-    ok(H5Dwrite(ds.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-       "writing", name);
+  write_array(parent, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, data.data(), data.size());
 }
 
 std::vector<std::uint64_t> read_u64s(hid_t parent, const std::string& name) {
-  Handle ds(ok(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name),
-            H5Dclose);
-  Handle space(ok(H5Dget_space(ds.get()), "dataspace of " + name), H5Sclose);
-  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
-  std::vector<std::uint64_t> out(static_cast<std::size_t>(n));
-  if (n > 0)
-    ok(H5Dread(ds.get(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
-       "reading", name);
-  return out;
+  return read_array<std::uint64_t>(parent, name, H5T_NATIVE_UINT64);
 }
 
 namespace {
@@ -354,14 +361,8 @@ void copy_dataset(hid_t src, hid_t dst, const std::string& name) {
   Handle fspace(ok(H5Dget_space(out.get()), "dataspace of " + name), H5Sclose);
   for (hsize_t first = 0; first < dims[0]; first += step) {
     const hsize_t last = std::min(first + step, dims[0]);
-    std::array<hsize_t, 2> offset{first, 0};
-    unsigned filter_mask = 0;
     haddr_t addr = HADDR_UNDEF;
-    hsize_t size = 0;
-    if (H5Dget_chunk_info_by_coord(ds.get(), offset.data(), &filter_mask, &addr, &size) <
-            0 ||
-        addr == HADDR_UNDEF)
-      continue;
+    if (chunk_address(ds.get(), first, &addr) < 0 || addr == HADDR_UNDEF) continue;
     const std::array<hsize_t, 2> start{first, 0}, count{last - first, width};
     ok(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr,
                            count.data(), nullptr),

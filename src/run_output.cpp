@@ -173,11 +173,11 @@ void RunOutput::throw_if_damaged(const IoError& e) const {
 }
 
 std::string RunOutput::keep_rows(const std::string& group, hsize_t rows) {
-  return mark_lost_rows(file_.get(), group, rows, &restart_digests_, &digests_);
+  return mark_lost_rows(file_.get(), group, rows, restart_digests_, digests_);
 }
 
 std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows,
-                           const RowDigests* expected, RowDigests* kept) {
+                           const RowDigests& expected, RowDigests& kept) {
   h5::Handle g = h5::open_group(file, group);
   std::string lost;
   for (const std::string& name : h5::dataset_names(g.get())) {
@@ -186,20 +186,17 @@ std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows,
     for (const auto& [first, last] : h5::unallocated_rows(g.get(), name, rows))
       std::fill(bad.begin() + static_cast<long>(first),
                 bad.begin() + static_cast<long>(last), 1);
-    const auto it = expected ? expected->find(key) : RowDigests::const_iterator{};
-    const bool verify = expected && it != expected->end();
-    std::vector<std::uint64_t> digests;
-    if (verify || kept) {
-      const hsize_t width = h5::stack_width(g.get(), name);
-      const std::vector<double> data = h5::read_rows(g.get(), name, 0, rows);
-      digests.resize(rows);
-      for (hsize_t i = 0; i < rows; ++i) {
-        digests[i] = row_digest(std::span(data).subspan(i * width, width));
-        if (verify && i < it->second.size() && digests[i] != it->second[i]) bad[i] = 1;
-      }
+    const auto it = expected.find(key);
+    const hsize_t width = h5::stack_width(g.get(), name);
+    const std::vector<double> data = h5::read_rows(g.get(), name, 0, rows);
+    std::vector<std::uint64_t> digests(rows);
+    for (hsize_t i = 0; i < rows; ++i) {
+      digests[i] = row_digest(std::span(data).subspan(i * width, width));
+      if (it != expected.end() && i < it->second.size() && digests[i] != it->second[i])
+        bad[i] = 1;
     }
-    const std::vector<double> nan_row(h5::stack_width(g.get(), name),
-                                      std::numeric_limits<double>::quiet_NaN());
+    const std::uint64_t nan_digest =
+        row_digest(std::vector<double>(width, std::numeric_limits<double>::quiet_NaN()));
     for (hsize_t first = 0; first < rows;) {
       if (!bad[first]) {
         ++first;
@@ -208,15 +205,15 @@ std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows,
       hsize_t last = first;
       while (last < rows && bad[last]) ++last;
       h5::fill_rows_nan(g.get(), name, first, last);
-      if (kept)
-        for (hsize_t i = first; i < last; ++i) digests[i] = row_digest(nan_row);
+      std::fill(digests.begin() + static_cast<long>(first),
+                digests.begin() + static_cast<long>(last), nan_digest);
       lost += (lost.empty() ? "/" : "; /") + key +
               (last == first + 1
                    ? " row " + std::to_string(first)
                    : " rows " + std::to_string(first) + "-" + std::to_string(last - 1));
       first = last;
     }
-    if (kept) (*kept)[key] = std::move(digests);
+    kept[key] = std::move(digests);
   }
   return lost;
 }

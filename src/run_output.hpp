@@ -37,11 +37,10 @@ struct ContinueRun {
 //! and rows whose digest differs from the one in `expected` (when it has the dataset):
 //! a writer killed while HDF5 flushed its unjournaled chunk index can lose rows flushed
 //! long before, or leave their index entries pointing at other data. Returns them, e.g.
-//! "/snapshots/St row 51", "; "-separated; "" when none. With `kept`, also stores there
-//! the digests of the rows below `rows` as they are now.
+//! "/snapshots/St row 51", "; "-separated; "" when none. Stores in `kept` the digests
+//! of the rows below `rows` as they are now.
 std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows,
-                           const RowDigests* expected = nullptr,
-                           RowDigests* kept = nullptr);
+                           const RowDigests& expected, RowDigests& kept);
 
 class RunOutput {
  public:
