@@ -229,6 +229,17 @@ CvodeIntegrator::~CvodeIntegrator() {
 
 std::span<const double> CvodeIntegrator::state() const { return as_span(nv(y_)); }
 
+void CvodeIntegrator::derivative(std::span<double> out) const {
+  // CVODE's interpolating polynomial of the last step, differentiated once at its end
+  N_Vector d = N_VClone(nv(y_));
+  const int flag = CVodeGetDky(cvode_, t_, 1, d);
+  const auto v = as_span(d);
+  std::copy(v.begin(), v.end(), out.begin());
+  N_VDestroy(d);
+  if (flag != CV_SUCCESS)
+    throw std::logic_error("CvodeIntegrator::derivative: CVodeGetDky failed");
+}
+
 void CvodeIntegrator::set_profile(CallbackTimes* times) {
   callback_data_.times = times;
   g_ls_times = times;

@@ -91,6 +91,9 @@ class CvodeIntegrator {
 
   double time() const { return t_; }
   std::span<const double> state() const;
+  //! dy/dt at time() from CVODE's interpolating polynomial of the last step (valid after
+  //! a step; for dense output between steps, e.g. benchmarks coupling integrators).
+  void derivative(std::span<double> out) const;
   //! Totals of the run: CVODE's counters (reset by every reinit) plus those saved at
   //! each reinit and carried over from a checkpoint.
   SolverStats stats() const;

@@ -38,24 +38,52 @@ class Decay : public PhysicsModule {
 
 }  // namespace
 
+namespace {
+//! y' = -k y as a one-variable model, and the tolerances the decay tests use.
+std::unique_ptr<DiskModel> decay_model(double k) {
+  auto layout = std::make_shared<StateLayout>(1);
+  std::vector<std::unique_ptr<PhysicsModule>> mods;
+  mods.push_back(std::make_unique<Decay>(*layout, k));
+  layout->freeze();
+  return std::make_unique<DiskModel>(layout, std::move(mods));
+}
+IntegratorOptions decay_options() {
+  IntegratorOptions opt;
+  opt.rtol = 1e-10;
+  opt.atol = {1e-14};
+  return opt;
+}
+constexpr double kDecayY0[1] = {1.0};
+}  // namespace
+
 TEST(Integrator, LinearDecayOverTwelveDecades) {
   for (double k : {1e-6, 1e-3, 1.0, 1e3, 1e6}) {
-    auto layout = std::make_shared<StateLayout>(1);
-    std::vector<std::unique_ptr<PhysicsModule>> mods;
-    mods.push_back(std::make_unique<Decay>(*layout, k));
-    layout->freeze();
-    DiskModel model(layout, std::move(mods));
-    IntegratorOptions opt;
-    opt.rtol = 1e-10;
-    opt.atol = {1e-14};
-    const double y0[1] = {1.0};
-    CvodeIntegrator cvode(model, 0.0, y0, opt);
+    const auto model = decay_model(k);
+    CvodeIntegrator cvode(*model, 0.0, kDecayY0, decay_options());
     const double t = 5.0 / k;  // e^-5
     cvode.advance_to(t);
     EXPECT_DOUBLE_EQ(cvode.time(), t);
     EXPECT_NEAR(cvode.state()[0], std::exp(-5.0), 1e-7) << "k = " << k;
     EXPECT_GT(cvode.stats().nje, 0) << "the analytic Jacobian was never used";
   }
+}
+
+TEST(Integrator, DerivativeAfterEachStepIsTheSlopeOfTheSolution) {
+  // y' = -k y: after every internal step the derivative of CVODE's interpolant at the
+  // step's end is -k y to about the integration tolerance (relative 1e-6 here, where a
+  // derivative of the wrong order or sign would be off by O(1)).
+  const double k = 2.0;
+  const auto model = decay_model(k);
+  CvodeIntegrator cvode(*model, 0.0, kDecayY0, decay_options());
+  std::vector<double> d(1);
+  long checked = 0;
+  cvode.advance_to(3.0, [&](double, long) {
+    cvode.derivative(d);
+    const double y = cvode.state()[0];
+    EXPECT_NEAR(d[0] / (-k * y), 1.0, 1e-6) << "t = " << cvode.time();
+    ++checked;
+  });
+  EXPECT_GT(checked, 10);
 }
 
 namespace {
