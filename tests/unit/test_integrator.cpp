@@ -36,9 +36,6 @@ class Decay : public PhysicsModule {
   double k_;
 };
 
-}  // namespace
-
-namespace {
 //! y' = -k y as a one-variable model, and the tolerances the decay tests use.
 std::unique_ptr<DiskModel> decay_model(double k) {
   auto layout = std::make_shared<StateLayout>(1);
