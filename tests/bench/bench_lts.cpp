@@ -57,6 +57,7 @@
 #include "src/grid.hpp"
 #include "src/simulation.hpp"
 #include "src/units.hpp"
+#include "tests/bench/fiducial_outcome.hpp"
 
 using namespace panoptic;
 
@@ -154,11 +155,13 @@ class Coupler {
   std::vector<double> run(int sub);
   //! Writes the neighbours' cells of block b at time t into y_full.
   void fill_ghosts(int b, double t, std::span<double> y_full) const;
-  long block_steps() const;
-  long cell_steps() const;
-  long rhs_calls() const;
-  long jacobians() const;
+  //! A solver counter (&SolverStats::nst, nfe, nje) summed over the blocks, each
+  //! weighted by its cells (overlap included) or, with per_cell = false, not.
+  long total(long SolverStats::*counter, bool per_cell = true) const;
   int n_blocks() const { return static_cast<int>(blocks_.size()); }
+  int block_cells(int b) const { return blocks_[b].hi - blocks_[b].ilo; }
+  //! Per snapshot interval: every block's cumulative step count at its end.
+  std::vector<std::vector<long>> interval_steps_;
 
  private:
   std::vector<double> gather() const;
@@ -169,11 +172,6 @@ class Coupler {
   std::vector<int> owner_;  // per cell: its block
   std::vector<double> base_;
   bool extrapolate_ = false;  // inner neighbours: extrapolated from T0, not frozen
-
- public:
-  //! Per snapshot interval: every block's cumulative step count at its end.
-  std::vector<std::vector<long>> interval_steps_;
-  int block_cells(int b) const { return blocks_[b].hi - blocks_[b].ilo; }
 };
 
 BlockView::BlockView(const DiskModel& full, const Coupler& coupler, int block,
@@ -353,45 +351,11 @@ std::vector<double> Coupler::run(int sub) {
   return base_;
 }
 
-long Coupler::block_steps() const {
+long Coupler::total(long SolverStats::*counter, bool per_cell) const {
   long s = 0;
-  for (const Block& b : blocks_) s += b.cvode->stats().nst;
+  for (int b = 0; b < n_blocks(); ++b)
+    s += blocks_[b].cvode->stats().*counter * (per_cell ? block_cells(b) : 1);
   return s;
-}
-long Coupler::cell_steps() const {
-  long s = 0;
-  for (const Block& b : blocks_) s += b.cvode->stats().nst * (b.hi - b.ilo);
-  return s;
-}
-long Coupler::rhs_calls() const {
-  long s = 0;
-  for (const Block& b : blocks_) s += b.cvode->stats().nfe * (b.hi - b.ilo);
-  return s;
-}
-long Coupler::jacobians() const {
-  long s = 0;
-  for (const Block& b : blocks_) s += b.cvode->stats().nje * (b.hi - b.ilo);
-  return s;
-}
-
-struct Outcome {
-  double m_pl = 0.0, m_peb_snow = 0.0, budget = 0.0;
-  std::vector<double> sigma_d;
-};
-
-Outcome measure(const Simulation& sim, std::span<const double> y) {
-  const StateLayout& L = sim.model().layout();
-  Outcome o;
-  const int sd = *L.find_cell_var("sigma_d");
-  for (int i = 0; i < L.n_cells(); ++i) o.sigma_d.push_back(y[L.index(i, sd)]);
-  const auto [coag, si] = sim.planetesimal_mass(y);
-  o.m_pl = (coag + si) / units::kMearth;
-  const auto masses = sim.pebble_mass(y);
-  for (std::size_t k = 0; k < masses.size(); ++k)
-    if (sim.pebble_monitors()[k].name == "snow line")
-      o.m_peb_snow = masses[k] / units::kMearth;
-  o.budget = sim.budget_error(y);
-  return o;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -450,7 +414,7 @@ int main(int argc, char** argv) {
     ref_steps.push_back(cvode.stats().nst);
   }
   const double wall_ref = seconds_since(t0);
-  const Outcome ref = measure(sim, cvode.state());
+  const FiducialOutcome ref = measure_outcome(sim, cvode.state());
   const long ref_cell_steps = cvode.stats().nst * n;
   std::printf("params/fiducial.toml to %g yr, %d cells", cfg.real("output.t_end_yr"), n);
   for (const auto& s : sets) std::printf(", %s", s.c_str());
@@ -482,22 +446,18 @@ int main(int argc, char** argv) {
           continue;
         }
         const double wall = seconds_since(t0);
-        const Outcome o = measure(sim, y);
-        double num = 0.0, den = 0.0;
-        for (int i = 0; i < n; ++i) {
-          num += std::abs(o.sigma_d[i] - ref.sigma_d[i]) * g.area(i);
-          den += ref.sigma_d[i] * g.area(i);
-        }
+        const FiducialOutcome o = measure_outcome(sim, y);
         std::printf(
             "| %d | %d | %d | %d | %g | %ld | %.3g | %.3f | %.3f | %.3f | %.2e | %.2e | "
-            "%.2e | %.1e | "
-            "%.1f |\n",
-            bsize, ov, lts.n_blocks(), sub, tol_scale, lts.block_steps(),
-            double(lts.cell_steps()), double(lts.cell_steps()) / double(ref_cell_steps),
-            double(lts.rhs_calls()) / double(cvode.stats().nfe * n),
-            double(lts.jacobians()) / double(cvode.stats().nje * n),
+            "%.2e | %.1e | %.1f |\n",
+            bsize, ov, lts.n_blocks(), sub, tol_scale,
+            lts.total(&SolverStats::nst, false), double(lts.total(&SolverStats::nst)),
+            double(lts.total(&SolverStats::nst)) / double(ref_cell_steps),
+            double(lts.total(&SolverStats::nfe)) / double(cvode.stats().nfe * n),
+            double(lts.total(&SolverStats::nje)) / double(cvode.stats().nje * n),
             std::abs(o.m_pl / ref.m_pl - 1.0),
-            std::abs(o.m_peb_snow / ref.m_peb_snow - 1.0), num / den, o.budget, wall);
+            std::abs(o.m_peb_snow / ref.m_peb_snow - 1.0),
+            sigma_l1(g, o.sigma_d, ref.sigma_d), o.budget, wall);
         if (profile) {
           std::printf(
               "\n  | interval ends [yr] | coupled cell-steps | blocks' cell-steps | most "

@@ -26,31 +26,19 @@
 #include "src/grid.hpp"
 #include "src/simulation.hpp"
 #include "src/units.hpp"
+#include "tests/bench/fiducial_outcome.hpp"
 
 using namespace panoptic;
 
 namespace {
 
-struct Outcome {
-  double m_pl = 0.0;        // [M_earth]
-  double m_peb_snow = 0.0;  // [M_earth]
-  std::vector<double> sigma_d;
+struct Outcome : FiducialOutcome {
   long steps_l = 0, steps_t = 0;
   double wall = 0.0;
 };
 
 Outcome measure(const Simulation& sim, std::span<const double> y) {
-  const StateLayout& L = sim.model().layout();
-  Outcome o;
-  const int sd = *L.find_cell_var("sigma_d");
-  for (int i = 0; i < L.n_cells(); ++i) o.sigma_d.push_back(y[L.index(i, sd)]);
-  const auto [coag, si] = sim.planetesimal_mass(y);  // [g]
-  o.m_pl = (coag + si) / units::kMearth;
-  const auto masses = sim.pebble_mass(y);  // [g], in the order of pebble_monitors()
-  for (std::size_t k = 0; k < masses.size(); ++k)
-    if (sim.pebble_monitors()[k].name == "snow line")
-      o.m_peb_snow = masses[k] / units::kMearth;
-  return o;
+  return {measure_outcome(sim, y)};
 }
 
 Outcome coupled(Simulation& sim) {
@@ -144,14 +132,10 @@ int main(int argc, char** argv) {
       "m_peb_snow error | Sigma_d(t_end) L1 |\n|---|---|---|---|---|---|---|---|\n");
   for (int m : macros) {
     const Outcome o = split(sim, m, t1_yr * units::kYr);
-    double num = 0.0, den = 0.0;
-    for (std::size_t i = 0; i < o.sigma_d.size(); ++i) {
-      num += std::abs(o.sigma_d[i] - ref.sigma_d[i]) * g.area(static_cast<int>(i));
-      den += ref.sigma_d[i] * g.area(static_cast<int>(i));
-    }
     std::printf("| %d | %g | %ld | %ld | %.2f | %.2e | %.2e | %.2e |\n", m, t1_yr,
                 o.steps_l, o.steps_t, o.wall, std::abs(o.m_pl / ref.m_pl - 1.0),
-                std::abs(o.m_peb_snow / ref.m_peb_snow - 1.0), num / den);
+                std::abs(o.m_peb_snow / ref.m_peb_snow - 1.0),
+                sigma_l1(g, o.sigma_d, ref.sigma_d));
     std::fflush(stdout);
   }
   return 0;
