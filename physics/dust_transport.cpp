@@ -24,12 +24,13 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
   // No >= 0 constraint on Sigma_d: CVODE lets a constrained component dip below zero by
   // up to about its error weight and a restart (CvodeIntegrator::reinit) must then clip
   // it, creating that much dust; with solver.atol_sigma = 1e-8 the LBP test's dust
-  // budget was off by 2.7e-8 (README, Performance). The transport and the sinks are
-  // linear in Sigma_d with non-negative exact solutions, so its negative excursions are
-  // integration error held to the absolute tolerance by the error test. The decoded m
-  // and phi read Sigma_d through the codec's floor (ParticleCodec::eps_sigma), the SI
-  // triggers through a smooth positive part (Planetesimals::cell_rates); Newton iterates
-  // went negative there before, so these paths were already exercised.
+  // budget was off by 2.7e-8 (tests/bench/results/performance_log.md). The transport and
+  // the sinks are linear in Sigma_d with non-negative exact solutions, so its negative
+  // excursions are integration error held to the absolute tolerance by the error test.
+  // The decoded m and phi read Sigma_d through the codec's floor
+  // (ParticleCodec::eps_sigma), the SI triggers through a smooth positive part
+  // (Planetesimals::cell_rates); Newton iterates went negative there before, so these
+  // paths were already exercised.
   slot_ = layout.add_cell_var(
       {"sigma_d", "g cm^-2", "dust surface density", sigma_scale, false});
   const double area_total =
@@ -38,8 +39,9 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
   // back, like Sigma_pl, but stay in CVODE's error test: left out, erosion_40 on a
   // 0.05-10 au grid took 108 295 steps with 46 134 Newton convergence failures instead
   // of 30 648 and 6 252 (their error holds the step where Newton converges at the inner
-  // edge), and the default fiducial run 6 212 steps instead of 5 941 (README,
-  // Performance). They carry no >= 0 constraint: clipping would lose mass.
+  // edge), and the default fiducial run 6 212 steps instead of 5 941
+  // (tests/bench/results/performance_log.md). They carry no >= 0 constraint: clipping
+  // would lose mass.
   g_out_ = layout.add_global_var({"m_out_dust", "initial dust mass",
                                   "dust mass that left through r_in, in units of the "
                                   "initial dust mass on the grid",
@@ -158,7 +160,7 @@ int DustTransport::face_flows(int f, const T* ya, const T* yb, std::span<const d
   // the speed of its own St (flux-vector splitting, v_a^+ q_a + v_b^- q_b): fiducial
   // planetesimal mass nearer the fine-grid value on 250 cells (12.9 vs 13.4 M_earth,
   // 11.6-11.7 on 1000 cells) but 50% more steps and stronger travelling waves at the
-  // growth front (README, "Performance"); not kept.
+  // growth front (tests/bench/results/performance_log.md); not kept.
   const T st =
       f > 0 ? T(sqrt(stokes_.St(f - 1, ya) * stokes_.St(f, yb))) : stokes_.St(0, ya);
   const T v = opt_.drift ? velocity(f, ya, yb, st) : T(0.0);

@@ -292,7 +292,7 @@ std::vector<KeySpec> make_keys() {
           "CVODE's nonlinear convergence coefficient (CVodeSetNonlinConvCoef): Newton "
           "stops when its correction is below this fraction of the local error "
           "tolerance; 0.03 rather than CVODE's 0.1: less Newton error in the local error "
-          "estimate, fewer failed steps (README, Performance)",
+          "estimate, fewer failed steps (tests/bench/results/performance_log.md)",
           0.0, true, 1.0, false),
 
       // [solver] (continued) and [checkpoint]: restart, README "Restart"

@@ -26,7 +26,8 @@
 //
 // Usage: build/tests/bench_lts [--block B ...] [--overlap V ...] [--sub K ...]
 //            [--tol-scale X] [--overlap-atol F] [--extrapolate] [--profile]
-//            [--set key=value ...]        (README "Performance" has the measurements)
+//            [--set key=value ...]
+// (measurements: README "Performance" and tests/bench/results/performance_log.md)
 //   --block B:     cells per block (16 by default); every combination of B, V, K is run
 //   --overlap V:   each block also integrates the V cells inside it and discards them, so
 //                  that the lagged inner neighbour acts V cells away from its own cells

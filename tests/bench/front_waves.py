@@ -1,8 +1,9 @@
-"""Travelling waves at the growth front of the fiducial scene (issue 7; README,
-Performance): runs params/fiducial.toml to 1000 yr with snapshots every 5 yr from 850 yr,
-for each grid given, and prints the RMS of Sigma_d(t) about a quadratic trend in time,
-relative to its mean, averaged over the cells between 1.4 and 1.9 au. A smooth front
-gives ~0.3 %; the waves of coarse log-spaced grids give tens of per cent. Run on demand.
+"""Travelling waves at the growth front of the fiducial scene (issue 7;
+tests/bench/results/performance_log.md): runs params/fiducial.toml to 1000 yr with
+snapshots every 5 yr from 850 yr, for each grid given, and prints the RMS of Sigma_d(t)
+about a quadratic trend in time, relative to its mean, averaged over the cells between 1.4
+and 1.9 au. A smooth front gives ~0.3 %; the waves of coarse log-spaced grids give tens
+of per cent. Run on demand.
 
     /usr/bin/python3 tests/bench/front_waves.py --exe build/panoptic --workdir DIR \\
         [--grids 125:0 250:0 500:0 1000:0 350:0.5] [--rtol 1e-6]
