@@ -197,7 +197,9 @@ int run(const RunArgs& a) {
   const double wall0 = restart ? restart->chk.wall_s : 0.0;
   const auto start = Clock::now();
   // What a checkpoint of the snapshot just written holds; `last` is kept in memory so
-  // that a stop between snapshots can checkpoint the last one.
+  // that a stop between snapshots can checkpoint the last one. Its row digests are
+  // filled in only when it is written (checkpoint_last), from the rows counted in
+  // `last_rows` at its snapshot.
   const auto record = [&](double t, std::vector<double> y, long index) {
     return Checkpoint{t,
                       std::move(y),
@@ -211,9 +213,10 @@ int run(const RunArgs& a) {
                       out.run_id(),
                       PANOPTIC_GIT_SHA,
                       PANOPTIC_VERSION,
-                      out.row_digests()};
+                      {}};
   };
   Checkpoint last = record(times.front(), y0, index0);
+  RowCounts last_rows = row_counts(out.row_digests());
   RunDiagnostics diag(sim, out, restart ? times.front() : 0.0);
   if (restart && !out.rebuild_note().empty())
     std::fprintf(stderr, "panoptic: warning: %s: %s\n", out.path().c_str(),
@@ -241,6 +244,7 @@ int run(const RunArgs& a) {
   long checkpointed = -1;  // snapshot index of the checkpoint on disk
   const auto checkpoint_last = [&] {
     if (last.snapshot_index == checkpointed) return;
+    last.row_digests = first_rows(out.row_digests(), last_rows);
     write_checkpoint(chk_path, last);
     checkpointed = last.snapshot_index;
   };
@@ -279,6 +283,7 @@ int run(const RunArgs& a) {
       std::vector<double> y(cvode.state().begin(), cvode.state().end());
       if (reinit) cvode.reinit(times[k], y);
       last = record(times[k], std::move(y), index0 + static_cast<long>(k));
+      last_rows = row_counts(out.row_digests());
       if (k + 1 == times.size()) break;
       const double now = seconds_since(start);
       if (schedule.due(last.snapshot_index, now)) {

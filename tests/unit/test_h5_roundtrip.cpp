@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -167,4 +168,33 @@ TEST(H5RoundTrip, CopyFileKeepsEveryRowAttributeAndLostChunk) {
   EXPECT_EQ(h5::unallocated_rows(gb.get(), "gappy", 3), (Ranges{{1, 2}}));
   EXPECT_EQ(h5::read_doubles(h5::open_group(b.get(), "grid").get(), "r_c"),
             (std::vector<double>{1.0, 2.0, 3.0}));
+}
+
+// What a run checkpoints (src/main.cpp): at each snapshot it notes how many rows each
+// dataset has (row_counts) and, when it writes the checkpoint later, takes the digests
+// of those rows from the output (first_rows) instead of having copied them at the
+// snapshot. Equal to the copy because RunOutput only appends digests: rows written after
+// the count (snapshots, series, a series declared later) must not change the answer.
+TEST(H5RoundTrip, RowDigestsCountedAtASnapshotAreThoseCopiedThen) {
+  const fs::path path = temp_file("digests.h5");
+  RunOutput out(path, false, {"s", "", "", ""});
+  out.add_field("sigma_d", 2, "g cm^-2", "dust");
+  out.add_series("timeseries", "flux", 1, "M_earth Myr^-1", "flux");
+  out.write_snapshot(0.0, {{"sigma_d", {1.0, 2.0}}});
+  out.append_series("timeseries", "flux", std::vector<double>{0.5});
+  out.write_snapshot(1.0, {{"sigma_d", {3.0, 4.0}}});
+  const RowDigests copied = out.row_digests();
+  const RowCounts counted = row_counts(out.row_digests());
+  ASSERT_EQ(copied.at("snapshots/sigma_d").size(), 2u);
+  ASSERT_EQ(copied.at("timeseries/flux").size(), 1u);
+  out.append_series("timeseries", "flux", std::vector<double>{0.7});
+  out.add_series("timeseries", "later", 1, "g", "declared after the count");
+  out.append_series("timeseries", "later", std::vector<double>{9.0});
+  out.write_snapshot(2.0, {{"sigma_d", {5.0, 6.0}}});
+  ASSERT_NE(out.row_digests(), copied);
+  EXPECT_EQ(first_rows(out.row_digests(), counted), copied);
+  // more rows counted than held: a caller's error, refused
+  RowCounts too_many = counted;
+  too_many["snapshots/sigma_d"] = 9;
+  EXPECT_THROW(first_rows(out.row_digests(), too_many), std::logic_error);
 }
