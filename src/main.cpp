@@ -216,7 +216,7 @@ int run(const RunArgs& a) {
                       {}};
   };
   Checkpoint last = record(times.front(), y0, index0);
-  RowCounts last_rows = row_counts(out.row_digests());
+  RowCounts last_rows;  // counted once the rows of `last`'s snapshot are in the output
   RunDiagnostics diag(sim, out, restart ? times.front() : 0.0);
   if (restart && !out.rebuild_note().empty())
     std::fprintf(stderr, "panoptic: warning: %s: %s\n", out.path().c_str(),
@@ -241,6 +241,10 @@ int run(const RunArgs& a) {
     out.write_snapshot(t / units::kYr, fields);
   };
   if (!restart) snapshot(0.0, y0);
+  // The rows of the first checkpointable snapshot: t = 0 just written, or after a
+  // restart the rows kept up to its checkpoint, /timeseries included (RunDiagnostics
+  // kept those), so that a stop before the next snapshot checkpoints all their digests.
+  last_rows = row_counts(out.row_digests());
   long checkpointed = -1;  // snapshot index of the checkpoint on disk
   const auto checkpoint_last = [&] {
     if (last.snapshot_index == checkpointed) return;

@@ -121,6 +121,14 @@ def checkpoint_attrs(path):
         return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
 
 
+def row_digests(path):
+    """A checkpoint's row digests: {"snapshots:St": [digest of row 0, ...], ...}."""
+    with h5py.File(path, "r") as f:
+        if "row_digests" not in f:
+            return {}
+        return {k: [int(x) for x in v[()]] for k, v in f["row_digests"].items()}
+
+
 def solver_attrs(path):
     with h5py.File(path, "r") as f:
         if "solver" not in f:

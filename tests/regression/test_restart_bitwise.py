@@ -10,9 +10,9 @@ import h5py
 import numpy as np
 
 from common import Checks, parse_args
-from restart_common import (checkpoint_attrs, checkpoint_of, copy_run, h5diff_snapshots,
-                            lost_rows_explained, panoptic, previous_of, rows,
-                            snapshot_differences, solver_attrs)
+from restart_common import (EXIT_STOPPED, checkpoint_attrs, checkpoint_of, copy_run,
+                            h5diff_snapshots, lost_rows_explained, panoptic, previous_of,
+                            row_digests, rows, snapshot_differences, solver_attrs)
 
 YR = 3.156e7  # s, src/units.hpp
 SCENE = "params/tests/restart.toml"  # transport alone: short runs
@@ -78,6 +78,24 @@ def main():
             f"log-spaced scene restarted from .chk.prev.h5 (snapshot {k}): /snapshots, "
             f"/timeseries, /summary identical, {rows(again)} snapshots "
             f"{diffs if diffs else ''}")
+
+    # A restart stopped before its first snapshot (--max-wall, due at the first step)
+    # checkpoints again the snapshot it restarted from: the same rows, so the same row
+    # digests, those of /timeseries included (a later restart verifies the rows it keeps
+    # against them).
+    stopped = f"{w}/stopped_at_once.h5"
+    copy_run(full, stopped, files=("output", "prev"))
+    before = row_digests(previous_of(stopped))
+    panoptic(args.exe, SCENE, "--restart", previous_of(stopped), "-o", stopped,
+             "--max-wall", "0.001s", sets=BASE + ["checkpoint.every_snapshots=7"],
+             expect=EXIT_STOPPED)
+    after = row_digests(checkpoint_of(stopped))
+    series = sorted(key for key in before if key.startswith("timeseries:"))
+    c.check(checkpoint_attrs(checkpoint_of(stopped))["snapshot_index"] == k and series and
+            after == before,
+            f"a restart stopped at once checkpoints snapshot {k} again with the same row "
+            f"digests ({len(before)} datasets, {len(series)} of /timeseries; now "
+            f"{len(after)}, missing: {sorted(set(before) - set(after))})")
 
     # A restart killed while it cut the file (SIGKILL, test_restart_killed) can leave the
     # /timeseries rows after its checkpoint read back as zeros, the fill value. The next
