@@ -87,7 +87,7 @@ def main():
     copy_run(full, stopped, files=("output", "prev"))
     before = row_digests(previous_of(stopped))
     panoptic(args.exe, SCENE, "--restart", previous_of(stopped), "-o", stopped,
-             "--max-wall", "0.001s", sets=BASE + ["checkpoint.every_snapshots=7"],
+             "--max-wall", "0.000001s", sets=BASE + ["checkpoint.every_snapshots=7"],
              expect=EXIT_STOPPED)
     after = row_digests(checkpoint_of(stopped))
     series = sorted(key for key in before if key.startswith("timeseries:"))
