@@ -50,7 +50,11 @@ MonomerMaterial silicate_material() {
   return m;
 }
 
-double reduced_radius(double r1, double r2) { return r1 * r2 / (r1 + r2); }
+double work_of_adhesion(double gamma_surf) {
+  return 2.0 * gamma_surf;  // Dupre, two like surfaces; see the header
+}
+
+double reduced_radius(double r1, double r2) { return r1 * r2 / (r1 + r2); }  // spec §0
 
 double combined_modulus(double e1, double nu1, double e2, double nu2) {
   // spec §0; Johnson (1985), ch. 4
@@ -63,29 +67,32 @@ double hertz_force(double a, double r, double e_star) {
   return 4.0 * e_star * a * a * a / (3.0 * r);  // spec §0; Hertz; Johnson (1985) ch. 4
 }
 
-double jkr_approach(double a, double r, double e_star, double gamma_surf) {
+// The JKR and Tabor formulas take the work of adhesion w = 2 gamma (header; spec §0
+// writes gamma for w).
+double jkr_approach(double a, double r, double e_star, double w) {
   // spec §0; Johnson, Kendall & Roberts (1971)
-  return a * a / r - std::sqrt(2.0 * units::kPi * gamma_surf * a / e_star);
+  return a * a / r - std::sqrt(2.0 * units::kPi * w * a / e_star);
 }
 
-double jkr_force(double a, double r, double e_star, double gamma_surf) {
+double jkr_force(double a, double r, double e_star, double w) {
   // spec §0; Johnson, Kendall & Roberts (1971)
-  return hertz_force(a, r, e_star) -
-         std::sqrt(8.0 * units::kPi * gamma_surf * e_star * a * a * a);
+  return hertz_force(a, r, e_star) - std::sqrt(8.0 * units::kPi * w * e_star * a * a * a);
 }
 
-double jkr_equilibrium_radius(double r, double e_star, double gamma_surf) {
-  // spec §0: jkr_force(a_eq) = 0
-  return std::cbrt(9.0 * units::kPi * gamma_surf * r * r / (2.0 * e_star));
+double jkr_equilibrium_radius(double r, double e_star, double w) {
+  // spec §0: jkr_force(a_eq) = 0; = (9 pi gamma R^2 / E*)^(1/3) of Dominik & Tielens
+  // (1997)
+  return std::cbrt(9.0 * units::kPi * w * r * r / (2.0 * e_star));
 }
 
-double jkr_pulloff_force(double r, double gamma_surf) {
-  return 1.5 * units::kPi * gamma_surf * r;  // spec §0; JKR (1971), minimum of jkr_force
+double jkr_pulloff_force(double r, double w) {
+  // spec §0; JKR (1971), minimum of jkr_force; = 3 pi gamma R (Dominik & Tielens 1997)
+  return 1.5 * units::kPi * w * r;
 }
 
-double tabor_parameter(double r, double e_star, double gamma_surf, double z0) {
-  // spec §0; Tabor (1977)
-  return std::cbrt(r * gamma_surf * gamma_surf / (e_star * e_star * z0 * z0 * z0));
+double tabor_parameter(double r, double e_star, double w, double z0) {
+  // spec §0; Tabor (1977), with the work of adhesion as in Johnson & Greenwood (1997)
+  return std::cbrt(r * w * w / (e_star * e_star * z0 * z0 * z0));
 }
 
 double rolling_energy(double gamma_surf, double rolling_radius, double xi_crit) {
@@ -98,9 +105,10 @@ ContactProperties contact_properties(const MonomerMaterial& mat) {
   c.reduced_radius = reduced_radius(mat.a0, mat.a0);
   c.e_star =
       combined_modulus(mat.youngs_modulus, mat.poisson, mat.youngs_modulus, mat.poisson);
-  c.a_eq = jkr_equilibrium_radius(c.reduced_radius, c.e_star, mat.gamma_surf);
-  c.f_pulloff = jkr_pulloff_force(c.reduced_radius, mat.gamma_surf);
-  c.tabor = tabor_parameter(c.reduced_radius, c.e_star, mat.gamma_surf, mat.z0);
+  c.work_adhesion = work_of_adhesion(mat.gamma_surf);
+  c.a_eq = jkr_equilibrium_radius(c.reduced_radius, c.e_star, c.work_adhesion);
+  c.f_pulloff = jkr_pulloff_force(c.reduced_radius, c.work_adhesion);
+  c.tabor = tabor_parameter(c.reduced_radius, c.e_star, c.work_adhesion, mat.z0);
   c.e_roll =
       rolling_energy(mat.gamma_surf, mat.rolling_radius_factor * mat.a0, mat.xi_crit);
   c.m0 = (4.0 * units::kPi / 3.0) * mat.a0 * mat.a0 * mat.a0 * mat.rho0;  // spec §2
@@ -117,14 +125,15 @@ std::string contact_summary(std::string_view species, const MonomerMaterial& mat
                             : "WARNING: JKR-DMT transition (0.1 <= mu_T <= 5), "
                               "JKR outside its validity";
   char buf[512];
-  std::snprintf(
-      buf, sizeof buf,
-      "%.*s: a0 = %.3g um, rho0 = %.3g g/cm^3, m0 = %.3g g, E* = %.3g GPa, "
-      "gamma = %.3g erg/cm^2, a_eq = %.3g nm, F_c = %.3g dyn, E_roll = %.3g erg "
-      "(R_r = %.3g a0), mu_T = %.3g (z0 = %.2f nm) -> %s",
-      static_cast<int>(species.size()), species.data(), mat.a0 / kMicron, mat.rho0, c.m0,
-      c.e_star / kGPa, mat.gamma_surf, c.a_eq / kNanometre, c.f_pulloff, c.e_roll,
-      mat.rolling_radius_factor, c.tabor, mat.z0 / kNanometre, verdict);
+  std::snprintf(buf, sizeof buf,
+                "%.*s: a0 = %.3g um, rho0 = %.3g g/cm^3, m0 = %.3g g, E* = %.3g GPa, "
+                "gamma = %.3g erg/cm^2 (w = 2 gamma), a_eq = %.3g nm, F_c = %.3g dyn, "
+                "E_roll = %.3g erg "
+                "(R_r = %.3g a0), mu_T = %.3g (z0 = %.2f nm) -> %s",
+                static_cast<int>(species.size()), species.data(), mat.a0 / kMicron,
+                mat.rho0, c.m0, c.e_star / kGPa, mat.gamma_surf, c.a_eq / kNanometre,
+                c.f_pulloff, c.e_roll, mat.rolling_radius_factor, c.tabor,
+                mat.z0 / kNanometre, verdict);
   return std::string(buf);
 }
 

@@ -6,6 +6,17 @@
 //! Johnson, Kendall & Roberts (1971), as in Johnson (1985), "Contact Mechanics", ch. 4-5;
 //! Tabor (1977); Dominik & Tielens (1997) for E_roll; Okuzumi et al. (2012) and Krijt et
 //! al. (2013, 2015) for the monomer constants. cgs.
+//!
+//! Two conventions for the adhesion energy, a factor 2 apart: the material constant
+//! gamma (100 erg cm^-2 for ice, 25 for silicate) is the surface energy *per surface*,
+//! the convention of Dominik & Tielens (1997), Wada et al. (2007) and of E_roll below;
+//! the JKR and Tabor formulas (Johnson 1985; Johnson & Greenwood 1997) are written with
+//! the work of adhesion w, which for two like surfaces is w = 2 gamma (Dupre). With it,
+//! a_eq = (9 pi w R^2 / (2 E*))^(1/3) = (9 pi gamma R^2 / E*)^(1/3) and F_c = (3/2) pi w
+//! R = 3 pi gamma R, the forms of Dominik & Tielens (1997) and Wada et al. (2007). Spec
+//! §0 writes the JKR formulas with gamma in place of w, which halves F_c and mu_T^(3/2);
+//! we use w (a correction of the spec, stated in the issue note). No disk-scale result
+//! depends on it: only E_roll enters the growth model.
 #include <string>
 #include <string_view>
 
@@ -37,7 +48,8 @@ struct ContactProperties {
   double reduced_radius = 0.0;  //!< R = a0/2 [cm]
   double e_star = 0.0;          //!< combined modulus E* [dyn cm^-2]
   double a_eq = 0.0;            //!< JKR equilibrium contact radius (zero load) [cm]
-  double f_pulloff = 0.0;       //!< JKR pull-off force F_c = (3/2) pi gamma R [dyn]
+  double work_adhesion = 0.0;   //!< work of adhesion w = 2 gamma [erg cm^-2]
+  double f_pulloff = 0.0;       //!< JKR pull-off force F_c = (3/2) pi w R [dyn]
   double tabor = 0.0;           //!< Tabor parameter mu_T [-]
   double e_roll = 0.0;          //!< rolling energy 6 pi^2 gamma R_r xi_crit [erg]
   double m0 = 0.0;              //!< monomer mass [g]
@@ -45,7 +57,12 @@ struct ContactProperties {
   bool dmt_regime = false;      //!< mu_T < 0.1: DMT limit (JKR does not apply)
 };
 
-//! Reduced radius R = R1 R2 / (R1 + R2) [cm]; R1, R2 [cm].
+//! Work of adhesion of two like surfaces, w = 2 gamma (Dupre) [erg cm^-2]; gamma: surface
+//! energy per surface [erg cm^-2].
+double work_of_adhesion(double gamma_surf);
+
+//! Reduced radius R = R1 R2 / (R1 + R2) [cm] (spec §0: R = a0/2 for equal monomers); R1,
+//! R2 [cm].
 double reduced_radius(double r1, double r2);
 
 //! Combined modulus E* from 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 [dyn cm^-2].
@@ -58,24 +75,25 @@ double hertz_approach(double a, double r);
 //! Hertz force F = 4 E* a^3 / (3 R) [dyn]; a, R [cm], E* [dyn cm^-2].
 double hertz_force(double a, double r, double e_star);
 
-//! JKR approach delta = a^2/R - sqrt(2 pi gamma a / E*) [cm] (negative: necking in
-//! tension).
-double jkr_approach(double a, double r, double e_star, double gamma_surf);
+//! JKR approach delta = a^2/R - sqrt(2 pi w a / E*) [cm] (negative: necking in
+//! tension); w: work of adhesion [erg cm^-2].
+double jkr_approach(double a, double r, double e_star, double w);
 
-//! JKR force F = 4 E* a^3/(3R) - sqrt(8 pi gamma E* a^3) [dyn] (positive = compressive).
-double jkr_force(double a, double r, double e_star, double gamma_surf);
+//! JKR force F = 4 E* a^3/(3R) - sqrt(8 pi w E* a^3) [dyn] (positive = compressive).
+double jkr_force(double a, double r, double e_star, double w);
 
-//! JKR equilibrium (zero-load) contact radius a_eq = (9 pi gamma R^2 / (2 E*))^(1/3)
-//! [cm].
-double jkr_equilibrium_radius(double r, double e_star, double gamma_surf);
+//! JKR equilibrium (zero-load) contact radius a_eq = (9 pi w R^2 / (2 E*))^(1/3) [cm].
+double jkr_equilibrium_radius(double r, double e_star, double w);
 
-//! JKR pull-off force F_c = (3/2) pi gamma R [dyn].
-double jkr_pulloff_force(double r, double gamma_surf);
+//! JKR pull-off force F_c = (3/2) pi w R [dyn].
+double jkr_pulloff_force(double r, double w);
 
-//! Tabor parameter mu_T = (R gamma^2 / (E*^2 z0^3))^(1/3) [-]; z0 [cm].
-double tabor_parameter(double r, double e_star, double gamma_surf, double z0);
+//! Tabor parameter mu_T = (R w^2 / (E*^2 z0^3))^(1/3) [-] (Johnson & Greenwood 1997);
+//! w: work of adhesion [erg cm^-2]; z0 [cm].
+double tabor_parameter(double r, double e_star, double w, double z0);
 
-//! Rolling energy E_roll = 6 pi^2 gamma R_r xi_crit [erg] (Dominik & Tielens 1997).
+//! Rolling energy E_roll = 6 pi^2 gamma R_r xi_crit [erg] (Dominik & Tielens 1997; gamma
+//! per surface, as they define it).
 double rolling_energy(double gamma_surf, double rolling_radius, double xi_crit);
 
 //! All contact quantities of two equal monomers of material `mat`.

@@ -51,6 +51,7 @@ struct GrowthOptions {
   bool fragmentation = false;
   bool bouncing = false;
   double phi_bounce = 0.3;
+  TurbulenceModel turbulence;  //!< V_g^2 normalisation and y_a of the turbulent dv (§3.5)
 };
 
 //! Longest floor-relaxation time t_relax / kRelaxFraction, in units of 1/Omega (spec §4.4
@@ -125,7 +126,8 @@ double log_of_constant(double x) {
   return last_ln;
 }
 
-//! Stokes number of the small projectiles: fixed, or that of a compact monomer.
+//! Stokes number of the small projectiles (spec §3, "velocity against small
+//! projectiles"): fixed (erosion.St_small), or that of a compact monomer (the default).
 inline double small_projectile_st(const GrowthOptions& o, const Species& sp,
                                   const LocalGas& gas) {
   if (o.st_small > 0.0) return o.st_small;
@@ -145,8 +147,8 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
   ParticleRates<T> r;
   r.a = a_known != nullptr ? *a_known : radius(m, phi, sp.rho0);  // spec §2
   r.St = St;
-  r.h_d = dust_scale_height(r.St, gas);  // spec §2
-  r.dv = dv_pair(r.St, m, gas, o.eps);   // spec §3
+  r.h_d = dust_scale_height(r.St, gas);               // spec §2
+  r.dv = dv_pair(r.St, m, gas, o.eps, o.turbulence);  // spec §3
   // spec §4.1 (Okuzumi et al. 2012 single-size form): sigma dv rho_d / sqrt(2) with the
   // vertical average over Gaussian layers of equal height.
   const T dm_coag = o.f_grow * 2.0 * sqrt(kPi) * r.a * r.a * r.dv * sigma_d / r.h_d;
@@ -158,7 +160,7 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
   r.dv_ls = T(0.0);
   if (o.erosion != ErosionModel::kNone) {
     const double st_s = small_projectile_st(o, sp, gas);
-    r.dv_ls = dv_small_projectile(r.St, m, st_s, sp.m0, gas);
+    r.dv_ls = dv_small_projectile(r.St, m, st_s, sp.m0, gas, o.turbulence);  // spec §3
     // spec §5.2: S(x) = 1/2 [1 - tanh((x - 1)/w)], x = dv_ls / v_eros
     const T s = tanh_step<T>((1.0 - r.dv_ls / o.v_eros) / o.w_eros);
     if (o.erosion == ErosionModel::kHalt) {  // E1: growth halts where dv_ls = v_eros
@@ -178,7 +180,12 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
   }
   if (o.bouncing)  // spec §5.3: compact aggregates bounce (p_stick -> 0 above phi_bounce)
     factor = factor * (1.0 - log_step(phi, o.phi_bounce, 0.05));
-  factor = factor * (1.0 - log_step(r.St, o.st_max, 0.1));  // soft cap of the size
+  // Soft cap of the size (growth.St_max, 1e4 by default; not in spec §4.1, a numerical
+  // guard): far past St = 1 the particle is a planetesimal, which the planetesimal
+  // channels (spec §7, from St >= 10) convert; without the cap a cell whose dust is not
+  // yet converted would let m grow without bound (ln m in Q_m), with no effect on any
+  // outcome. It leaves the rates below St = St_max/10 unchanged to < 1e-12.
+  factor = factor * (1.0 - log_step(r.St, o.st_max, 0.1));
   const T dm = dm_coag * factor;
   r.dm_dt = dm;
   r.dlnm_dt = dm / m;

@@ -170,6 +170,9 @@ std::vector<KeySpec> make_keys() {
              "drag: Epstein joined smoothly to Stokes and Reynolds-dependent drag, or "
              "Epstein "
              "only (spec §2)"),
+      positive("growth.vg2_factor", "1.0", "",
+               "V_g^2 = vg2_factor alpha c_s^2 in the turbulent relative velocity (spec "
+               "§3.5: 1, the Ormel & Cuzzi 2007 normalisation; alt. 1.5)"),
       real("growth.St_max", "1e4", "",
            "soft cap of St (m stops growing there; planetesimals "
            "are converted by the planetesimal channels)",
@@ -226,12 +229,14 @@ std::vector<KeySpec> make_keys() {
       positive("material.rolling_radius_factor", "1.0", "",
                "R_r = factor * a0 in E_roll = 6 pi^2 gamma R_r xi_crit (§0: 1 or 0.5)"),
       positive("material.ice_rho0", "1.4", "g cm^-3", "ice monomer density"),
-      positive("material.ice_gamma", "100.0", "erg cm^-2", "ice surface energy"),
+      positive("material.ice_gamma", "100.0", "erg cm^-2",
+               "ice surface energy per surface gamma (E_roll; JKR uses w = 2 gamma)"),
       positive("material.ice_youngs_gpa", "7.0", "GPa", "ice Young's modulus"),
       real("material.ice_poisson", "0.25", "", "ice Poisson ratio", 0.0, false, 0.5,
            true),
       positive("material.sil_rho0", "3.0", "g cm^-3", "silicate monomer density"),
-      positive("material.sil_gamma", "25.0", "erg cm^-2", "silicate surface energy"),
+      positive("material.sil_gamma", "25.0", "erg cm^-2",
+               "silicate surface energy per surface gamma (§0)"),
       positive("material.sil_youngs_gpa", "54.0", "GPa", "silicate Young's modulus"),
       real("material.sil_poisson", "0.17", "", "silicate Poisson ratio", 0.0, false, 0.5,
            true),

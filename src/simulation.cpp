@@ -81,6 +81,7 @@ physics::GrowthOptions growth_options_from_config(const Config& cfg) {
   o.drag = cfg.str("growth.drag_law") == "epstein" ? physics::DragLaw::kEpstein
                                                    : physics::DragLaw::kStokesRe;
   o.st_max = cfg.real("growth.St_max");
+  o.turbulence.vg2_factor = cfg.real("growth.vg2_factor");
   o.porosity = cfg.flag("porosity.enabled");
   o.s_hs = cfg.real("porosity.s_hs");
   o.b = cfg.real("porosity.b");

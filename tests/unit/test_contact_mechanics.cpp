@@ -54,51 +54,55 @@ TEST(ContactMechanics, MonomerMass) {
 }
 
 TEST(ContactMechanics, IcePropertiesAgainstIndependentValues) {
-  // python: E* = 7e10 / (2 * 0.9375) = 3.7333e10; a_eq = 9.819029e-7 cm (also the
-  // bisection root of F_JKR); F_c = 2.356194e-3 dyn; mu_T = 0.82452 (z0 = 0.4
-  // nm), 1.64903 (0.2 nm).
+  // The JKR and Tabor formulas take the work of adhesion w = 2 gamma (header). python:
+  // E* = 7e10 / (2 * 0.9375) = 3.7333e10; w = 200; a_eq = (9 pi w R^2/(2 E*))^(1/3) =
+  // 1.2371201e-6 cm, equal to Dominik & Tielens' (9 pi gamma R^2/E*)^(1/3); F_c = 3 pi
+  // gamma R = 4.7123890e-3 dyn; mu_T = (R w^2/(E*^2 z0^3))^(1/3) = 1.308837 (z0 = 0.4
+  // nm), 2.617674 (0.2 nm).
   const ContactProperties c = contact_properties(ice_material());
   EXPECT_DOUBLE_EQ(c.reduced_radius, 5e-6);
+  EXPECT_DOUBLE_EQ(c.work_adhesion, 200.0);
   EXPECT_LT(rel_err(c.e_star, 3.733333333333e10), 1e-12);
-  EXPECT_LT(rel_err(c.a_eq, 9.819029e-7), 1e-6);
-  EXPECT_LT(rel_err(c.f_pulloff, 2.356194e-3), 1e-6);
-  EXPECT_LT(rel_err(c.tabor, 0.82452), 1e-5);
+  EXPECT_LT(rel_err(c.a_eq, 1.2371201e-6), 1e-6);
+  EXPECT_LT(rel_err(c.f_pulloff, 4.7123890e-3), 1e-6);
+  EXPECT_LT(rel_err(c.tabor, 1.308837), 1e-6);
   // 0.1-micron ice monomers are NOT in the JKR regime (mu_T < 5) for any z0 in 0.2-0.4 nm
   EXPECT_FALSE(c.jkr_valid);
   EXPECT_FALSE(c.dmt_regime);
   MonomerMaterial ice02 = ice_material();
   ice02.z0 = 2e-8;
-  EXPECT_LT(rel_err(contact_properties(ice02).tabor, 1.64903), 1e-5);
+  EXPECT_LT(rel_err(contact_properties(ice02).tabor, 2.617674), 1e-6);
   EXPECT_FALSE(contact_properties(ice02).jkr_valid);
 }
 
 TEST(ContactMechanics, SilicatePropertiesAgainstIndependentValues) {
-  // python: E* = 2.780352e11; a_eq = 3.167482e-7 cm; F_c = 5.890486e-4 dyn;
-  // mu_T = 0.08580 (z0 = 0.4 nm: DMT regime), 0.17160 (z0 = 0.2 nm: transition)
+  // python: E* = 2.780352e11; w = 50; a_eq = 3.9907776e-7 cm; F_c = 1.1780972e-3 dyn;
+  // mu_T = 0.136200 (z0 = 0.4 nm), 0.272400 (z0 = 0.2 nm): the JKR-DMT transition for
+  // both (with gamma in place of w, as spec §0 writes it, 0.0858 would have been DMT)
   const ContactProperties c = contact_properties(silicate_material());
   EXPECT_LT(rel_err(c.e_star, 2.780352e11), 1e-6);
-  EXPECT_LT(rel_err(c.a_eq, 3.167482e-7), 1e-6);
-  EXPECT_LT(rel_err(c.f_pulloff, 5.890486e-4), 1e-6);
-  EXPECT_LT(rel_err(c.tabor, 0.08580), 1e-4);
+  EXPECT_LT(rel_err(c.a_eq, 3.9907776e-7), 1e-6);
+  EXPECT_LT(rel_err(c.f_pulloff, 1.1780972e-3), 1e-6);
+  EXPECT_LT(rel_err(c.tabor, 0.136200), 1e-5);
   EXPECT_FALSE(c.jkr_valid);
-  EXPECT_TRUE(c.dmt_regime);
+  EXPECT_FALSE(c.dmt_regime);
 }
 
 TEST(ContactMechanics, HertzAndJkrAgainstIndependentValues) {
-  // ice, a = a_eq / 2 (python): delta_H = 4.820667e-8 cm, F_H = 1.178097e-3 dyn,
-  // delta_JKR = -4.269269e-8 cm, F_JKR = -2.154065e-3 dyn
+  // ice, a = a_eq / 2, w = 200 (python): delta_H = 7.6523311e-8 cm, F_H = 2.3561945e-3
+  // dyn, delta_JKR = -6.7770428e-8 cm, F_JKR = -4.3081299e-3 dyn
   const ContactProperties c = contact_properties(ice_material());
-  const double a = 0.5 * c.a_eq, r = c.reduced_radius, g = 100.0;
-  EXPECT_LT(rel_err(hertz_approach(a, r), 4.820667e-8), 1e-6);
-  EXPECT_LT(rel_err(hertz_force(a, r, c.e_star), 1.178097e-3), 1e-6);
-  EXPECT_LT(rel_err(jkr_approach(a, r, c.e_star, g), -4.269269e-8), 1e-6);
-  EXPECT_LT(rel_err(jkr_force(a, r, c.e_star, g), -2.154065e-3), 1e-6);
+  const double a = 0.5 * c.a_eq, r = c.reduced_radius, w = 200.0;
+  EXPECT_LT(rel_err(hertz_approach(a, r), 7.6523311e-8), 1e-6);
+  EXPECT_LT(rel_err(hertz_force(a, r, c.e_star), 2.3561945e-3), 1e-6);
+  EXPECT_LT(rel_err(jkr_approach(a, r, c.e_star, w), -6.7770428e-8), 1e-6);
+  EXPECT_LT(rel_err(jkr_force(a, r, c.e_star, w), -4.3081299e-3), 1e-6);
 }
 
 TEST(ContactMechanics, JkrEquilibriumAndPullOff) {
   for (const MonomerMaterial& mat : {ice_material(), silicate_material()}) {
     const ContactProperties c = contact_properties(mat);
-    const double r = c.reduced_radius, es = c.e_star, g = mat.gamma_surf;
+    const double r = c.reduced_radius, es = c.e_star, g = c.work_adhesion;
     // zero load at a_eq
     EXPECT_LT(std::abs(jkr_force(c.a_eq, r, es, g)), 1e-10 * c.f_pulloff);
     // minimum of F_JKR(a) is -F_c, at a_eq / 4^(1/3) (python scan: a/a_eq = 0.62996)
@@ -131,10 +135,13 @@ TEST(ContactMechanics, SummaryLine) {
   const std::string ice = contact_summary("ice", ice_material());
   EXPECT_EQ(ice.rfind("ice: ", 0), 0u) << ice;
   EXPECT_NE(ice.find("E_roll = 4.74e-09 erg"), std::string::npos) << ice;
-  EXPECT_NE(ice.find("mu_T = 0.825"), std::string::npos) << ice;
+  EXPECT_NE(ice.find("mu_T = 1.31"), std::string::npos) << ice;
   EXPECT_NE(ice.find("WARNING"), std::string::npos) << ice;
   const std::string sil = contact_summary("silicate", silicate_material());
-  EXPECT_NE(sil.find("DMT"), std::string::npos) << sil;
+  EXPECT_NE(sil.find("WARNING: JKR-DMT transition"), std::string::npos) << sil;
+  MonomerMaterial weak = silicate_material();  // gamma = 10: mu_T = 0.1362 * 0.4^(2/3)
+  weak.gamma_surf = 10.0;                      // = 0.0739 (python), DMT
+  EXPECT_NE(contact_summary("weak", weak).find("WARNING: DMT regime"), std::string::npos);
   MonomerMaterial stiff = ice_material();  // a soft, sticky material in the JKR regime
   stiff.youngs_modulus = 1e8;
   EXPECT_EQ(contact_summary("soft", stiff).find("WARNING"), std::string::npos);
