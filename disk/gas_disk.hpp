@@ -46,11 +46,11 @@ class GasDisk {
   double c_s(double r) const;
   //! Mean thermal speed sqrt(8/pi) c_s [cm s^-1] (spec §1.3).
   double v_th(double r) const;
-  //! Keplerian angular frequency sqrt(G M / r^3) [s^-1].
+  //! Keplerian angular frequency sqrt(G M / r^3) [s^-1] (spec §1.1, §1.3).
   double omega_k(double r) const;
-  //! Keplerian speed [cm s^-1].
+  //! Keplerian speed Omega_K r [cm s^-1] (spec §1.3).
   double v_k(double r) const;
-  //! Pressure scale height c_s / Omega_K [cm].
+  //! Pressure scale height c_s / Omega_K [cm] (spec §1.3).
   double h_g(double r) const;
   //! Turbulent viscosity = gas diffusivity alpha c_s H [cm^2 s^-1] (spec §1.5, Sc = 1).
   double nu(double r) const;

@@ -56,8 +56,8 @@ inline LocalGas make_local_gas(double sigma_g, double temperature, double r,
   g.c_s = std::sqrt(kBoltzmann * temperature / (mu * kMassH));  // spec §1.3
   g.v_th = std::sqrt(8.0 / kPi) * g.c_s;                        // spec §1.3
   g.omega_k = std::sqrt(kG * m_star / (r * r * r));             // spec §1.3
-  g.v_k = g.omega_k * r;
-  g.h_g = g.c_s / g.omega_k;
+  g.v_k = g.omega_k * r;                                        // spec §1.3
+  g.h_g = g.c_s / g.omega_k;                                    // spec §1.3
   g.rho_g = sigma_g / (std::sqrt(2.0 * kPi) * g.h_g);  // spec §1.3, isothermal Gaussian
   g.mfp = mu * kMassH / (sigma_mol * g.rho_g);         // spec §1.6
   g.nu_mol = 0.5 * g.v_th * g.mfp;                     // spec §1.6
