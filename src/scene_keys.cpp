@@ -209,7 +209,9 @@ std::vector<KeySpec> make_keys() {
                "ice fragmentation speed"),
       positive("fragmentation.v_frag_sil_m_s", "5.0", "m s^-1",
                "silicate fragmentation speed"),
-      flag("bouncing.enabled", "false", "no sticking of compact aggregates (§5.3)"),
+      flag("bouncing.enabled", "false",
+           "no sticking of compact aggregates (§5.3 as written: at every speed and "
+           "mass, not a usable bouncing barrier; see README)"),
       real("bouncing.phi_bounce", "0.3", "",
            "filling factor above which aggregates bounce", 0.0, true, 1.0, false),
 

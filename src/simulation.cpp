@@ -597,6 +597,17 @@ std::string Simulation::summary() const {
   if (growth_) {  // spec §0: the contact mechanics behind the collision parameters
     s << physics::contact_summary("ice", material(cfg_, "ice")) << "\n";
     s << physics::contact_summary("silicate", material(cfg_, "sil")) << "\n";
+    // spec §5.3 has bouncing at every speed for phi >= phi_bounce, and monomers start at
+    // phi = 1 (README, "What works").
+    if (cfg_.flag("bouncing.enabled"))
+      s << "WARNING: bouncing.enabled: particles with phi >= bouncing.phi_bounce = "
+        << cfg_.real("bouncing.phi_bounce")
+        << " do not stick at any speed (spec §5.3 has no speed or mass threshold): "
+        << (cfg_.flag("porosity.enabled")
+                ? "the monomers (phi = 1) grow only once hit-and-stick has lowered phi "
+                  "below it, and then never bounce"
+                : "with porosity off nothing grows")
+        << "\n";
   }
   return s.str();
 }
