@@ -156,7 +156,16 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
   // does not depend on Sigma_d (both terms of E2 are proportional to it): dm = dm_coag
   // factor. Keeping the factor apart lets the filling factor test "dm/dt > 0" smoothly on
   // it (below) without dividing by a rate that vanishes with the dust.
-  T factor = T(1.0);
+  // spec §5.3: similar-size collisions turn growth into loss above v_frag, smoothly. The
+  // factor multiplies the similar-size term only: under E2 the small-projectile term is
+  // another kind of collision, and a product of the two signed terms would turn net
+  // erosion plus fragmentation into growth.
+  T frag = T(1.0);
+  if (o.fragmentation) {
+    const T dv2 = r.dv * r.dv;
+    frag = 1.0 - 2.0 * dv2 / (dv2 + sp.v_frag * sp.v_frag);
+  }
+  T factor = frag;
   r.dv_ls = T(0.0);
   if (o.erosion != ErosionModel::kNone) {
     const double st_s = small_projectile_st(o, sp, gas);
@@ -164,19 +173,16 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
     // spec §5.2: S(x) = 1/2 [1 - tanh((x - 1)/w)], x = dv_ls / v_eros
     const T s = tanh_step<T>((1.0 - r.dv_ls / o.v_eros) / o.w_eros);
     if (o.erosion == ErosionModel::kHalt) {  // E1: growth halts where dv_ls = v_eros
-      factor = s;
+      factor = s * frag;
     } else {  // E2: rate balance with an implicit reservoir of small projectiles
       // dm = (1 - f_s) dm_coag + f_s 2 sqrt(pi) a^2 dv_ls Sigma_d / h_bar [1 -
       // (1+e)(1-S)]
       const double h_s = value_of(dust_scale_height(T(st_s), gas));
       const T h_bar = sqrt(r.h_d * r.h_d + h_s * h_s) / sqrt(2.0);
-      factor = (1.0 - o.f_s) + o.f_s / o.f_grow * (r.dv_ls / r.dv) * (r.h_d / h_bar) *
-                                   (1.0 - (1.0 + o.eps_eros) * (1.0 - s));
+      factor = (1.0 - o.f_s) * frag + o.f_s / o.f_grow * (r.dv_ls / r.dv) *
+                                          (r.h_d / h_bar) *
+                                          (1.0 - (1.0 + o.eps_eros) * (1.0 - s));
     }
-  }
-  if (o.fragmentation) {  // spec §5.3: growth turns into loss above v_frag, smoothly
-    const T dv2 = r.dv * r.dv;
-    factor = factor * (1.0 - 2.0 * dv2 / (dv2 + sp.v_frag * sp.v_frag));
   }
   if (o.bouncing)  // spec §5.3: compact aggregates bounce (p_stick -> 0 above phi_bounce)
     factor = factor * (1.0 - log_step(phi, o.phi_bounce, 0.05));

@@ -315,6 +315,40 @@ TEST(GrowthTurbulence, Vg2FactorScalesOnlyTheTurbulentTermAndIsReadFromTheScene)
 
 // ------------------------------------------------------- fragmentation, bouncing, §5.3
 
+TEST(GrowthFragmentation, WithErosionBalanceFragmentsOnlyTheSimilarSizeTerm) {
+  // E2 + fragmentation: dm/dt = (1 - f_s) F_frag R_coag + f_s (projectile term). With
+  // net erosion (f_s = 0.95) and fragmentation (v_frag = 10 m/s < dv) both terms are
+  // losses; multiplying the whole E2 factor by F_frag (as before this test) turned the
+  // two negatives into growth (+9.75 g/s here against -481 and -11.6 g/s alone).
+  const LocalGas gas = mmsn_gas(5.0);
+  Species sp = ice_species();
+  sp.v_frag = 1e3;
+  const double m = 1e10, phi = 1e-5, st = 1.0;
+  GrowthOptions none = plain_options(), e2 = plain_options();
+  e2.erosion = ErosionModel::kBalance;
+  e2.f_s = 0.95;
+  GrowthOptions frag = plain_options(), both = e2;
+  frag.fragmentation = true;
+  both.fragmentation = true;
+  const double coag = particle_rates(kSigmaD, m, phi, st, gas, sp, none).dm_dt;
+  const double r_frag = particle_rates(kSigmaD, m, phi, st, gas, sp, frag).dm_dt / coag;
+  const double r_e2 = particle_rates(kSigmaD, m, phi, st, gas, sp, e2).dm_dt / coag;
+  const double r_both = particle_rates(kSigmaD, m, phi, st, gas, sp, both).dm_dt / coag;
+  ASSERT_LT(r_frag, 0.0);
+  ASSERT_LT(r_e2, 0.0);
+  // the projectile share of E2: r_e2 = (1 - f_s) + f_s X
+  const double x = (r_e2 - (1.0 - e2.f_s)) / e2.f_s;
+  EXPECT_LT(r_both, 0.0);
+  EXPECT_NEAR(r_both, (1.0 - e2.f_s) * r_frag + e2.f_s * x, 1e-12);
+  // and the filling factor sees no growth: the smooth positive part (band 1e-3) of a
+  // loss r R_coag is ~1e-6/(4|r|) R_coag, here 2e-6 of |d ln m/dt| (|slope| <= 0.58);
+  // it was |slope| |d ln m/dt| when the loss was taken for growth)
+  both.porosity = true;
+  const auto rb = particle_rates(kSigmaD, m, phi, st, gas, sp, both);
+  EXPECT_LT(rb.dlnm_dt, 0.0);
+  EXPECT_LT(std::abs(rb.dlnphi_dt), 1e-5 * std::abs(rb.dlnm_dt)) << r_both;
+}
+
 TEST(GrowthFragmentation, FactorAndLimits) {
   // dm/dt -> dm/dt (1 - 2 dv^2/(dv^2 + v_frag^2)) (spec §5.3): 1 for dv << v_frag, 0 at
   // dv = v_frag, -> -1 for dv >> v_frag. States (python St): (1 g, 1e-3), dv = 5.84
