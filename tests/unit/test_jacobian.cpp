@@ -204,6 +204,31 @@ TEST(Jacobian, GrowthFragmentationBouncing) {
                       "fragmentation + bouncing");
 }
 
+// With porosity off and bouncing on (above) every particle has phi = 1 and bounces, so
+// the growth terms nearly vanish; the cases below have the porous state of grown_state
+// (phi from 1 to 1e-4 across the grid), so fragmentation (v_frag of 10 m/s, crossed by
+// the grown cells), its combination with erosion E2 and the bouncing switch at phi_bounce
+// are each exercised.
+TEST(Jacobian, GrowthPorousFragmentation) {
+  expect_exact_growth(
+      {"porosity.enabled=true", "fragmentation.enabled=true",
+       "fragmentation.v_frag_ice_m_s=10.0", "fragmentation.v_frag_sil_m_s=10.0"},
+      "porous fragmentation");
+}
+
+TEST(Jacobian, GrowthPorousErosionBalanceFragmentation) {
+  expect_exact_growth(
+      {"porosity.enabled=true", "erosion.model=\"balance\"", "erosion.f_s=0.95",
+       "fragmentation.enabled=true", "fragmentation.v_frag_ice_m_s=10.0",
+       "fragmentation.v_frag_sil_m_s=10.0"},
+      "erosion balance + fragmentation");
+}
+
+TEST(Jacobian, GrowthPorousBouncing) {
+  expect_exact_growth({"porosity.enabled=true", "bouncing.enabled=true"},
+                      "porous bouncing");
+}
+
 TEST(Jacobian, GrowthEpsteinDrag) {
   expect_exact_growth({"porosity.enabled=true", "growth.drag_law=\"epstein\""},
                       "Epstein drag");
