@@ -36,7 +36,7 @@ def main():
     rate = s["sigma_pl_si"][1][1] / (r.time[1] * YR)
     expect = 0.01 * s["sigma_d"][0][1] * omega(r)
     print(f"SI d16: conversion rate {rate:.4e} g cm^-2 s^-1, zeta Sigma_d Omega = {expect:.4e}")
-    c.check(abs(rate / expect - 1) < 0.01, "SI rate = zeta Sigma_d Omega_K to 1%")
+    c.check(abs(rate / expect - 1) < 0.005, "SI rate = zeta Sigma_d Omega_K to 0.5% (finite difference over the snapshots: 0.29%)")
     eps_end = 7.3 * s["sigma_d"][-1][1] / s["sigma_g"][-1][1]
     print(f"  after {r.time[-1]:.0f} yr: rho_d/rho_g ~ {eps_end:.2f}")
     c.check(0.7 < eps_end < 1.05, "conversion stops near rho_d/rho_g = 1")
@@ -64,7 +64,7 @@ def main():
     slope = np.polyfit(r.time[sel] * YR, np.log(sd[sel]), 1)[0] if sel.sum() >= 3 else np.nan
     print(f"direct coagulation: d ln Sigma_d/dt = {slope:.4e} s^-1 over {sel.sum()} snapshots; "
           f"-Omega/10 = {-omega(r) / 10:.4e}")
-    c.check(abs(slope / (-omega(r) / 10) - 1) < 0.05, "conversion on tau_pl = 10/Omega (5%)")
+    c.check(abs(slope / (-omega(r) / 10) - 1) < 0.001, "conversion on tau_pl = 10/Omega (0.1%; measured 0.03%)")
     budget = (s["m_dust"] + s["m_pl_coag"] + s["m_pl_si"] + s["m_out_inner"]) / s["m_dust"][0] - 1
     c.check(np.max(np.abs(budget)) < 1e-10, f"budget closes ({np.max(np.abs(budget)):.1e})")
 
@@ -79,7 +79,7 @@ def main():
     rate = s["sigma_pl_si"][1][1] / (r.time[1] * YR)
     expect = 0.01 * s["sigma_d"][0][1] * omega(r)
     print(f"SI zcrit: conversion rate {rate:.4e} g cm^-2 s^-1, zeta Sigma_d Omega = {expect:.4e}")
-    c.check(abs(rate / expect - 1) < 0.01, "zcrit rate = zeta Sigma_d Omega_K to 1%")
+    c.check(abs(rate / expect - 1) < 0.005, "zcrit rate = zeta Sigma_d Omega_K to 0.5% (measured 0.28%)")
     z_end = s["sigma_d"][-1][1] / s["sigma_g"][-1][1]
     print(f"  after {r.time[-1]:.0f} yr: Z = {z_end:.4g}, Z_crit(0.05) = {z_crit:.4g}")
     c.check(0.8 < z_end / z_crit < 1.3, "conversion stops near Z = Z_crit")
