@@ -396,7 +396,8 @@ void Simulation::prepare_output(RunOutput& out) const {
   }
   out.write_static("grid", "r_c", r_c, "au",
                    "cell centres (geometric mean of the faces)");
-  out.write_static("grid", "r_f", r_f, "au", "cell faces (log-spaced, or stretched by grid.stretch)");
+  out.write_static("grid", "r_f", r_f, "au",
+                   "cell faces (log-spaced, or stretched by grid.stretch)");
   out.write_static("grid", "area", grid_.areas(), "cm^2", "annulus area of each cell");
   out.write_static("disk", "T", T, "K", "midplane temperature");
   out.write_static("disk", "c_s", cs, "cm s^-1", "isothermal sound speed");
