@@ -319,7 +319,8 @@ TEST(GrowthFragmentation, WithErosionBalanceFragmentsOnlyTheSimilarSizeTerm) {
   // E2 + fragmentation: dm/dt = (1 - f_s) F_frag R_coag + f_s (projectile term). With
   // net erosion (f_s = 0.95) and fragmentation (v_frag = 10 m/s < dv) both terms are
   // losses; multiplying the whole E2 factor by F_frag (as before this test) turned the
-  // two negatives into growth (+9.75 g/s here against -481 and -11.6 g/s alone).
+  // two negatives into growth (+9.75 g/s against -481 and -11.6 g/s alone, measured at
+  // Sigma_d = 1.5 g cm^-2; 1.35 % more at this test's kSigmaD).
   const LocalGas gas = mmsn_gas(5.0);
   Species sp = ice_species();
   sp.v_frag = 1e3;
@@ -573,6 +574,11 @@ TEST(GrowthCompactionFloor, LittleLeakAboveFloorWhereGrowthIsSlow) {
   // the dynamic decline (compression slope -1/8: ~3e-4 Omega), so phi keeps falling to
   // the floor. With the spec's t_relax = 0.01 min(t_grow, 1/Omega) the push would be 300x
   // larger than here, above the decline: phi would stall ~8% above the floor.
+  // A constructed state: particle_rates takes St as an argument, and the St passed is
+  // that of (1e4 g, phi = 1e-6), a slowly growing particle; the self-consistent particle
+  // (1e4 g, 1.08 floor) has St = 4.87e-4 and t_grow Omega = 27, where the cap does not
+  // bind (tests/regression/test_reference_numbers.py). The algebra of the push against
+  // the decline is what is tested, at t_grow Omega ~ 400.
   const double floor = 0.00013300598760858056, phi = 1.08 * floor;  // python, as above
   const Push p = compaction_push(1e4, phi, 7.618670735964675e-05, floors(true, false));
   const double t_grow_omega = kOmega / p.dlnm_dt;
