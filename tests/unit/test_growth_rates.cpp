@@ -379,7 +379,7 @@ TEST(GrowthFragmentation, FactorAndLimits) {
     EXPECT_NEAR(ratio(fast, v_frag), fragmentation_factor(dv_fast, v_frag), 1e-13)
         << v_frag;
   EXPECT_EQ(ratio(fast, dv_fast), 0.0);       // dv = v_frag: exactly balanced
-  EXPECT_LT(ratio(fast, 1e2), -0.99);         // 1 m/s: -0.99368
+  EXPECT_LT(ratio(fast, 1e2), -0.99);         // 1 m/s: -0.99369
   EXPECT_NEAR(ratio(fast, 1.0), -1.0, 1e-6);  // 1 cm/s: -1 + 6.3e-7
 }
 

@@ -123,7 +123,9 @@ TEST_F(RelVelMmsn5au, SmallProjectileAtStOne) {
   // the heavy OC07 branch (python: 66.022 m/s). St = 1 is the centre of the spec's own
   // +-0.1 dex blend, where dv_t^2 is the mean of the intermediate (2.969 V_g^2) and heavy
   // (1.5 V_g^2) values: python gives 68.434 m/s, 3.7% above the quoted 66. We test the
-  // blended value and that it lies between the two one-sided branches (66.0 and 70.6).
+  // blended value and that it lies between the heavy branch (66.0 m/s) and 70.58 m/s (the
+  // unblended law reaches 7056.7 cm/s at St = 0.990; the intermediate branch's St -> 1
+  // limit is 7076.4).
   const double v = dv_ls(1.0, gas);
   EXPECT_LT(rel_err(v, 6843.419116118557), 1e-9);
   EXPECT_GT(v, 6602.0);
@@ -194,7 +196,8 @@ TEST_F(RelVelMmsn5au, ContinuousAcrossRegimeBoundaries) {
   }
   // The blends are steep but bounded: scan ln St on [1e-6, 1e3] with step 1e-4 and bound
   // |d ln dv / d ln St| between neighbours. Measured maxima: 4.5 (pair, at the St_eta
-  // blend) and 7.4 (dv_ls, beside its smooth 1.7 cm/s minimum at St = St_s = 1e-4). The
+  // blend) and 7.4 (dv_ls, near St = St_s = 1e-4, where dv_ls = 1.7 cm/s; its smooth
+  // minimum, 1.60 cm/s, is at St = 9.73e-5). The
   // unblended law jumps by up to ln 4.5 in one step there, i.e. a "slope" of ~1e4.
   const double dl = 1e-4;
   double prev_pr = std::log(dv_pr(1e-6, gas)), prev_ls = std::log(dv_ls(1e-6, gas));
