@@ -1,7 +1,9 @@
 """A diffusing ring against the exact axisymmetric solution (spec §6.1 diffusion term):
 relative L1 error at three resolutions, on the log-spaced and on a stretched grid, the
 measured convergence order printed and asserted (>= 1.8: centred diffusion is second
-order on both)."""
+order on both); and the dust diffusivity D_d = D_g / (1 + St^2) (spec §6.1): at St = 3,
+run 10x longer, the ring spreads as the St = 1e-8 one does (D_g/(1 + St) would spread it
+2.5x further)."""
 import numpy as np
 
 from common import Checks, load_run, parse_args, run
@@ -13,7 +15,9 @@ YR = 3.156e7
 
 def l1_error(path):
     r = load_run(path)
-    D = float(r.disk["alpha"][0] * r.disk["c_s"][0] * r.disk["h_g"][0])
+    st = r.config["transport"]["St"]
+    # D_d = alpha c_s H / (1 + St^2) (spec §6.1; Youdin & Lithwick 2007)
+    D = float(r.disk["alpha"][0] * r.disk["c_s"][0] * r.disk["h_g"][0]) / (1 + st * st)
     # the initial profile is the ring solution at t0 with 2 D t0 = w^2
     cfg = r.config["dust"]
     r0, w = cfg["ring_r_au"] * AU, cfg["ring_width_au"] * AU
@@ -53,6 +57,18 @@ def main():
         c.check(all(o >= 1.8 for o in orders),
                 f"stretch {stretch:g}: second-order convergence (order >= 1.8)")
         c.check(errs[-1] < 1e-3, f"stretch {stretch:g}: N = 400 error {errs[-1]:.2e} < 1e-3")
+        if stretch == 0.0:
+            err_200 = errs[1]
+
+    # D_d = D_g / (1 + St^2): St = 3 (a prescribed Stokes number, drift off) for 10x the
+    # time is the same ring problem in D t
+    out = f"{args.workdir}/ring_200_st3.h5"
+    t_end = 10 * load_run(f"{args.workdir}/ring_200_s0.h5").time[-1]
+    run(args.exe, "params/tests/ring_diffusion.toml", out,
+        ["grid.n_cells=200", "transport.St=3.0", f"output.t_end_yr={t_end:g}"])
+    e, _, _ = l1_error(out)
+    print(f"St = 3, N = 200, t_end = {t_end:g} yr: relative L1 error {e:.3e} (St = 1e-8: {err_200:.3e})")
+    c.check(e < 2 * err_200, f"St = 3: the ring diffuses with D_g/(1 + St^2) (L1 error {e:.2e})")
     c.finish()
 
 
