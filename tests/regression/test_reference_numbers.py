@@ -127,6 +127,16 @@ class Gas:
 GAS_CACHE = {}
 
 
+
+def table_row(ref, s, anchor, prefix):
+    """The fields and line of the table row of test `anchor` that starts with `prefix`,
+    or None (reported as a failed check) when there is no such row."""
+    try:
+        return s.row(anchor, prefix)
+    except LookupError as e:
+        ref._report(s, False, "?", anchor, "row", str(e))
+        return None
+
 def gas(r_au):
     if r_au not in GAS_CACHE:
         GAS_CACHE[r_au] = Gas(r_au)
@@ -805,11 +815,10 @@ def check_relative_velocity(ref):
 
     A = "SmallProjectileSpeedsMatchSpec"
     for st_lit, py in (("0.1", "16.650"), ("0.3", "36.792"), ("0.5", "51.953"), ("1.5", "67.462")):
-        try:
-            f, line = s.row(A, "{" + st_lit + ",")
-        except LookupError as e:
-            ref._report(s, False, "?", A, "row", str(e))
+        got = table_row(ref, s, A, "{" + st_lit + ",")
+        if got is None:
             continue
+        f, line = got
         v = dv_ls(float(f[0]))
         ref.value(s, A, f[1], float(f[1]), line, v, 0.03, "rel", f"dv_ls(St = {f[0]}) (spec §3)")
         ref.value(s, A, f[2], float(f[2]), line, v, 1e-9, "rel", f"dv_ls(St = {f[0]})")
@@ -904,11 +913,10 @@ def check_growth(ref):
 
     A = "CoagulationRateMatchesSpecFormula"
     for prefix in ("{1e-10, 1.0", "{1.0, 1e-3", "{1e8, 5e-4", "{1e12, 1e-3"):
-        try:
-            f, line = s.row(A, prefix)
-        except LookupError as e:
-            ref._report(s, False, "?", A, "row", str(e))
+        got = table_row(ref, s, A, prefix)
+        if got is None:
             continue
+        f, line = got
         m, phi = float(f[0]), float(f[1])
         sig = sigma_d if f[2] == "kSigmaD" else float(f[2])
         st_lit = float(f[3])
@@ -951,11 +959,10 @@ def check_growth(ref):
     A = "GrowthErosionBalance, MatchesSpecFormula"
     h_s = float(h_dust(st_mono, g))
     for prefix in ("{0.1, ", "{0.3368842767113562, ", "{1.0, ", "{100.0, "):
-        try:
-            f, line = s.row(A, prefix)
-        except LookupError as e:
-            ref._report(s, False, "?", A, "row", str(e))
+        got = table_row(ref, s, A, prefix)
+        if got is None:
             continue
+        f, line = got
         st = float(f[0])
         a = radius(m_t, phi_t)
         h_d = float(h_dust(st, g))
@@ -1031,11 +1038,10 @@ def check_growth(ref):
              ("{1e12, 1e-3", "7e25", None, "26.7", "heavy"),
              ("{1e9, 1e-6", "9e22", "205", "0.062", "stokes"))
     for prefix, e_lit, x_lit, st_lit, regime in cases:
-        try:
-            f, line = s.row(A, prefix)
-        except LookupError as e:
-            ref._report(s, False, "?", A, "row", str(e))
+        got = table_row(ref, s, A, prefix)
+        if got is None:
             continue
+        f, line = got
         m, phi = float(f[0]), float(f[1])
         st = stokes(m, phi, g)
         ref.value(s, A, f[2], float(f[2]), line, st, 1e-9, "rel", f"St({f[0]} g, {f[1]})")
@@ -1081,11 +1087,10 @@ def check_growth(ref):
     for prefix, what in (('{"gas", ', "gas"), ('{"gas+grav"', "gas+grav"),
                          ('{"gas, fast growth"', "gas, fast"),
                          ('{"grav", ', "grav"), ('{"grav+gas"', "grav+gas")):
-        try:
-            f, line = s.row(A, prefix)
-        except LookupError as e:
-            ref._report(s, False, "?", A, "row", str(e))
+        got = table_row(ref, s, A, prefix)
+        if got is None:
             continue
+        f, line = got
         m, phi, st_lit = float(f[1]), float(f[2]), float(f[3])
         gas_on, grav_on = f[4] == "true", f[5] == "true"
         ref.value(s, A, f[3], st_lit, line, stokes(m, phi, g), 1e-9, "rel", f"{what}: St({f[1]} g, {f[2]})")
@@ -1160,11 +1165,10 @@ def check_growth(ref):
     for prefix, flit, fmine, what in (("{1e4, 4e-4", "1.330e-4", None, "phi_gas(1e4 g)"),
                                       ("{1e15, 3e-2", "1.013e-2", fgrav(1e15), "phi_grav(1e15 g)"),
                                       ("{1e-12, 1e-2", None, None, "")):
-        try:
-            f, line = s.row(A, prefix)
-        except LookupError as e:
-            ref._report(s, False, "?", A, "row", str(e))
+        got = table_row(ref, s, A, prefix)
+        if got is None:
             continue
+        f, line = got
         m, phi = float(f[0]), float(f[1])
         st = stokes(m, phi, g)
         ref.value(s, A, f[2], float(f[2]), line, st, 1e-9, "rel", f"St({f[0]} g, {f[1]})")
@@ -1183,11 +1187,10 @@ def check_growth(ref):
     for prefix, gas_floor in (('{"phi_gas(1e4 g)"', True), ('{"phi_gas(1e10 g)"', True),
                               ('{"phi_gas(1e18 g)"', True), ('{"phi_grav(1e15 g)"', False),
                               ('{"phi_grav(1e18 g)"', False)):
-        try:
-            f, line = s.row(A, prefix)
-        except LookupError as e:
-            ref._report(s, False, "?", A, "row", str(e))
+        got = table_row(ref, s, A, prefix)
+        if got is None:
             continue
+        f, line = got
         m, phi_f, st_lit = float(f[1]), float(f[2]), float(f[3])
         lo, hi = float(f[5]), float(f[6])
         if gas_floor:
