@@ -16,6 +16,7 @@ from common import Checks, load_run, parse_args, run
 E_ROLL_ICE = 4.74e-9  # erg, spec §0 [D]
 B = 0.15              # spec §4.2
 MFP_5AU = 120.0       # cm, mean free path at 5 au (spec §12)
+YR = 3.156e7          # s, src/units.hpp
 STALL = {20: (0.12, 0.15), 40: (0.32, 0.36), 60: (0.6, 0.7)}  # spec §5.2 [D]
 
 
@@ -50,7 +51,7 @@ def main():
     # 4. growth rate: centred differences of ln m over the 1500 log-spaced snapshots
     # against spec §4.1 at the midpoints (geometric means of the neighbouring snapshots'
     # a, dv, St, Sigma_d), where the growth is resolved (m from 1e3 m0 up to 1e4 g).
-    t = r.time * 3.156e7
+    t = r.time * YR
     sig = r.snapshots["sigma_d"][:, 1]
     alpha = r.config["disk"]["alpha"]
     h_g = r.disk["h_g"][1]

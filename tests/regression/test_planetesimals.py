@@ -125,10 +125,8 @@ def main():
     # the ice sublimated at the snow line is f_ice of the dust that crossed the snow-line
     # face inward (spec §1.7, §6.3, §8): booked by the transport and by the pebble monitor
     # of that face independently; the flow there is inward at every snapshot here
-    with h5py.File(out, "r") as f:
-        r_peb = f["pebbles/r_au"][()]
-        r_snow = float(f["disk"].attrs["r_snow_au"])
-    k = int(np.argmin(np.abs(r_peb - r_snow)))
+    r_peb = r.monitor_r_au
+    k = int(np.argmin(np.abs(r_peb - r.r_snow_au)))
     f_ice = r.config["snowline"]["f_ice"]
     m_snow, m_sub = s["m_through"][:, k], s["m_sublimated"]
     c.check(m_snow[-1] > 0 and np.allclose(m_sub, f_ice * m_snow, rtol=1e-9, atol=1e-12 * m_snow[-1]),

@@ -137,6 +137,20 @@ def table_row(ref, s, anchor, prefix):
         ref._report(s, False, "?", anchor, "row", str(e))
         return None
 
+
+def particle_row(ref, s, anchor, prefix, g):
+    """A {m, phi, St, ...} row of test `anchor` (table_row), its St, which the test
+    passes to the C++, checked against the St worked out here at (m, phi) to 1e-9:
+    (fields, line, m, phi, St), or None."""
+    got = table_row(ref, s, anchor, prefix)
+    if got is None:
+        return None
+    f, line = got
+    m, phi = float(f[0]), float(f[1])
+    st = stokes(m, phi, g)
+    ref.value(s, anchor, f[2], float(f[2]), line, st, 1e-9, "rel", f"St({f[0]} g, {f[1]})")
+    return f, line, m, phi, st
+
 def gas(r_au):
     if r_au not in GAS_CACHE:
         GAS_CACHE[r_au] = Gas(r_au)
@@ -1038,13 +1052,10 @@ def check_growth(ref):
              ("{1e12, 1e-3", "7e25", None, "26.7", "heavy"),
              ("{1e9, 1e-6", "9e22", "205", "0.062", "stokes"))
     for prefix, e_lit, x_lit, st_lit, regime in cases:
-        got = table_row(ref, s, A, prefix)
+        got = particle_row(ref, s, A, prefix, g)
         if got is None:
             continue
-        f, line = got
-        m, phi = float(f[0]), float(f[1])
-        st = stokes(m, phi, g)
-        ref.value(s, A, f[2], float(f[2]), line, st, 1e-9, "rel", f"St({f[0]} g, {f[1]})")
+        f, line, m, phi, st = got
         e_ratio = 0.25 * m * float(dv_pair(float(f[2]), m, g)) ** 2 / thr
         x = 4 * radius(m, phi) / (9 * g.mfp)
         ref.cmp(s, A, e_lit, e_ratio, 0, "digits", what=f"E_imp/(3 b E_roll) at {f[0]} g (comment)")
@@ -1165,13 +1176,10 @@ def check_growth(ref):
     for prefix, flit, fmine, what in (("{1e4, 4e-4", "1.330e-4", None, "phi_gas(1e4 g)"),
                                       ("{1e15, 3e-2", "1.013e-2", fgrav(1e15), "phi_grav(1e15 g)"),
                                       ("{1e-12, 1e-2", None, None, "")):
-        got = table_row(ref, s, A, prefix)
+        got = particle_row(ref, s, A, prefix, g)
         if got is None:
             continue
-        f, line = got
-        m, phi = float(f[0]), float(f[1])
-        st = stokes(m, phi, g)
-        ref.value(s, A, f[2], float(f[2]), line, st, 1e-9, "rel", f"St({f[0]} g, {f[1]})")
+        f, line, m, phi, st = got
         floor = max(fgas(m, st), fgrav(m))
         if flit:
             ref.cmp(s, A, flit, fmine if fmine is not None else fgas(m, st), 0, "digits",

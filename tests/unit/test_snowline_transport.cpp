@@ -40,9 +40,7 @@ TEST(SnowLineTransport, InflowLosesTheIceFractionOfItsMassAndOfEachParticle) {
   ASSERT_EQ(L.size(), ref.model().layout().size());
   const auto sd = L.find_cell_var("sigma_d"), qm = L.find_cell_var("q_m");
   ASSERT_TRUE(sd && qm);
-  int sub = -1;
-  for (int k = 0; k < L.n_global_vars(); ++k)
-    if (L.global_var(k).name == "m_sublimated") sub = k;
+  const int sub = sim.transport().sublimated_slot();  // the booked m_sublimated
   ASSERT_GE(sub, 0);
 
   // Grown particles everywhere: ln(m/m_ref) = ln_m in every cell (m = 1e-10 g: the dust
