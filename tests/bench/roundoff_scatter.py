@@ -15,7 +15,8 @@ largest differ by a factor, a single run's error at that rtol is noise.
         --ref DIR_WP/fiducial_N4096_rtol1e-10.h5 [--scene fiducial] [--n-cells 350] \
         [--stretch 0.5] [--rtol 1e-2 1e-3 1e-4 1e-5 1e-6] [--draws 5] [--jobs 2]
 
-writes DIR/roundoff_scatter_<scene>.md (the table) and .json (every run)."""
+writes DIR/roundoff_scatter_<scene>_N<n>.md (the table, with the median wall time of
+each rtol) and .json (every run)."""
 import argparse
 import concurrent.futures
 import json
@@ -43,7 +44,8 @@ def run(exe, workdir, scene, n, stretch, rtol):
     if p.returncode != 0:
         return {"rtol": rtol, "error": wp.error_line(p.stderr)}
     r = load_run(out)
-    return {"rtol": rtol, "steps": int(r.solver["nst"]), "outcomes": wp.outcomes(r)}
+    return {"rtol": rtol, "steps": int(r.solver["nst"]), "wall_s": float(r.solver["wall_s"]),
+            "outcomes": wp.outcomes(r)}
 
 
 def main():
@@ -75,7 +77,8 @@ def main():
         ok = [r for r in recs if "outcomes" in r]
         errs = [wp.errors(r["outcomes"], ref) for r in ok]
         for r, e in zip(ok, errs):
-            records.append({"rtol": r["rtol"], "steps": r["steps"], "err": e})
+            records.append({"rtol": r["rtol"], "steps": r["steps"], "wall_s": r["wall_s"],
+                            "err": e})
         for r in recs:
             if "error" in r:
                 records.append(r)
@@ -84,16 +87,17 @@ def main():
             v = np.array([e[name] for e in errs])
             cells.append(f"{np.median(v):.1e} / {v.max():.1e}" if len(v) else "-")
         steps = [r["steps"] for r in ok]
+        wall = f"{np.median([r['wall_s'] for r in ok]):.2f}" if ok else "-"
         rows.append(f"| {rt:g} | {len(ok)}/{len(recs)} | "
-                    + (f"{min(steps)}–{max(steps)}" if steps else "-") + " | "
+                    + (f"{min(steps)}–{max(steps)}" if steps else "-") + f" | {wall} | "
                     + " | ".join(cells) + " |")
     head = (f"{args.scene}, N = {args.n_cells}, stretch {args.stretch:g}; {args.draws} draws "
             f"per rtol (rtol x (1 + k 1e-3)); {sha}\n\nError against the reference, "
             "median / largest over the draws:\n\n"
-            "| rtol | finished | steps | " + " | ".join(names) + " |\n|"
-            + "---|" * (3 + len(names)) + "\n")
+            "| rtol | finished | steps | wall [s], median | " + " | ".join(names) + " |\n|"
+            + "---|" * (4 + len(names)) + "\n")
     text = head + "\n".join(rows) + "\n"
-    base = os.path.join(args.workdir, f"roundoff_scatter_{args.scene}")
+    base = os.path.join(args.workdir, f"roundoff_scatter_{args.scene}_N{args.n_cells}")
     with open(base + ".md", "w") as f:
         f.write(text)
     with open(base + ".json", "w") as f:

@@ -29,7 +29,7 @@ error bounds how far the reference itself can be trusted.
 
     /usr/bin/python3 tests/bench/work_precision.py --exe build/panoptic --workdir DIR \
         [--scenes fiducial erosion_40] [--n-cells 32 64 ...] [--rtol 1e-2 1e-4 ...] \
-        [--ref-n 2048 --ref-rtol 1e-8] [--ref2-n 1024 --ref2-rtol 1e-8] \
+        [--ref-n 2048 --ref-rtol 1e-8 --ref-atol 1e-12] [--ref2-n 1024 --ref2-rtol 1e-8] \
         [--stretch 0 0.5] [--timeout 1800] [--max-cost 1e9] [--jobs 1]
 
 writes DIR/work_precision.json (every run: settings, costs, errors, command),
@@ -76,15 +76,18 @@ def error_line(stderr):
     return (err[0] if err else (lines[-1] if lines else ""))[:200]
 
 
-def run_one(exe, workdir, scene, n, rtol, timeout, max_steps, fresh, stretch=0.0):
+def run_one(exe, workdir, scene, n, rtol, timeout, max_steps, fresh, stretch=0.0,
+            atol_sigma=None):
     """Runs one (scene, N, rtol, grid stretch) unless a finished output is there; returns
-    its record."""
+    its record. `atol_sigma`, if given, overrides the scene's solver.atol_sigma."""
     out = os.path.join(workdir, tag(scene, n, rtol, stretch) + ".h5")
     meta = out + ".json"
     cmd = [exe, "run", os.path.join(REPO, "params", scene + ".toml"), "-o", out,
            "--overwrite", "--set", f"grid.n_cells={n}", "--set", f"solver.rtol={rtol:g}",
            "--set", f"grid.stretch={stretch:g}",
            "--set", "checkpoint.every_wall_s=0", "--set", f"solver.max_steps={max_steps}"]
+    if atol_sigma is not None:
+        cmd += ["--set", f"solver.atol_sigma={atol_sigma:g}"]
     rec = {"scene": scene, "n_cells": n, "rtol": rtol, "stretch": stretch,
            "cmd": " ".join(cmd), "out": out}
     if not fresh and os.path.exists(meta):
@@ -295,6 +298,11 @@ def main():
                     help="grid.stretch values (0: log-spaced)")
     ap.add_argument("--ref-n", type=int, default=4096)
     ap.add_argument("--ref-rtol", type=float, default=1e-10)
+    # The scene's absolute tolerance (solver.atol_sigma = 1e-8 of the initial maximum of
+    # Sigma) would dominate rtol = 1e-10 wherever Sigma_d is below 100 times that maximum,
+    # i.e. everywhere: the references tighten it too (1e-12, as README's references).
+    ap.add_argument("--ref-atol", type=float, default=1e-12,
+                    help="solver.atol_sigma of the reference runs")
     ap.add_argument("--ref2-n", type=int, help="second reference, to bound the first's error")
     ap.add_argument("--ref2-rtol", type=float)
     ap.add_argument("--timeout", type=float, default=1800.0, help="wall-time limit per run [s]")
@@ -336,7 +344,8 @@ def main():
     recs = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         futs = {pool.submit(run_one, exe, args.workdir, s, n, rt, to, args.max_steps,
-                            args.fresh, st): role for s, n, rt, to, role, st in jobs}
+                            args.fresh, st, args.ref_atol if role != "run" else None): role
+                for s, n, rt, to, role, st in jobs}
         for fut in concurrent.futures.as_completed(futs):
             r = fut.result()
             r["role"] = futs[fut]
