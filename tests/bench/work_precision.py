@@ -170,7 +170,8 @@ def errors(o, ref):
         v, v_ref = o[name], ref[name]
         e[name] = (float(abs(v / v_ref - 1)) if v_ref != 0 and np.isfinite(v_ref)
                    else (0.0 if v == v_ref else float("nan")))
-    e["max"] = max(e[k] for k in OUTCOMES)
+    # the largest defined error (the zone edge is undefined where no zone forms)
+    e["max"] = max((e[k] for k in OUTCOMES if np.isfinite(e[k])), default=float("nan"))
     return e
 
 
@@ -196,10 +197,17 @@ def plot(recs, scene, ref_label, path):
     markers = "os^Dv<>ph*"
     fig, axes = plt.subplots(2, 4, figsize=(16, 7.5), constrained_layout=True)
     for ax, name in zip(axes.flat, OUTCOMES + ["max"]):
+        if not any(np.isfinite(r["err"][name]) for r in done):
+            # e.g. the zone edge of a scene that forms no planetesimals
+            ax.text(0.5, 0.5, "undefined in this scene", transform=ax.transAxes,
+                    ha="center", va="center")
+            ax.set_title(name, fontsize=10)
+            continue
         for st, n in series:
             i = ns.index(n)
             rs = sorted((r for r in done if r["n_cells"] == n and
-                         r.get("stretch", 0.0) == st), key=lambda r: r["rtol"])
+                         r.get("stretch", 0.0) == st and np.isfinite(r["err"][name])),
+                        key=lambda r: r["rtol"])
             x = [r["cpu"] for r in rs]
             y = [max(r["err"][name], 1e-12) for r in rs]
             label = f"N = {n}" + (f", stretch {st:g}" if st else "")
