@@ -285,6 +285,52 @@ TEST(GrowthErosionBalance, NetErosionWellAboveVEros) {
               0.9 - 0.1 * 0.07396515994630538, 1e-9);
 }
 
+TEST(GrowthErosionBalance, SpecDefaultsHardlyErodeAtAnySt) {
+  // README's claim about E2 at the spec defaults, over the whole range of St at 5 au
+  // (400 log-spaced St from 1e-6 to 1e4; m and phi enter the ratio to coagulation only
+  // through the Brownian term, negligible here): (1) with f_s = 0.1, eps_eros = 1 the
+  // E2 rate stays >= 0.88 of the coagulation rate everywhere (measured: 0.889, at
+  // St = 0.37); (2) the smallest f_s that gives net erosion at some St, found by
+  // bisection on the rate's sign: 0.901 (at St ~ 0.37, where R_s/R_coag peaks; at St = 1,
+  // NetErosionWellAboveVEros above, it takes f_s > 0.93).
+  const LocalGas gas = mmsn_gas(5.0);
+  const Species sp = ice_species();
+  const double m = 1e10, phi = 1e-5;
+  GrowthOptions none = plain_options(), e2 = plain_options();
+  e2.erosion = ErosionModel::kBalance;
+  e2.v_eros = 4e3;
+  e2.eps_eros = 1.0;
+  auto ratio = [&](double st, double f_s) {
+    e2.f_s = f_s;
+    return particle_rates(kSigmaD, m, phi, st, gas, sp, e2).dm_dt /
+           particle_rates(kSigmaD, m, phi, st, gas, sp, none).dm_dt;
+  };
+  double worst = 1.0, st_worst = 0.0;
+  for (int k = 0; k < 400; ++k) {
+    const double st = std::pow(10.0, -6.0 + 10.0 * k / 399.0);
+    const double r = ratio(st, 0.1);
+    if (r < worst) worst = r, st_worst = st;
+  }
+  // smallest f_s with dm/dt < 0 at some St (the rate is linear in f_s at fixed St)
+  auto erodes_somewhere = [&](double f_s) {
+    for (int k = 0; k < 400; ++k)
+      if (ratio(std::pow(10.0, -6.0 + 10.0 * k / 399.0), f_s) < 0.0) return true;
+    return false;
+  };
+  double lo = 0.1, hi = 0.99;
+  ASSERT_FALSE(erodes_somewhere(lo));
+  ASSERT_TRUE(erodes_somewhere(hi));
+  for (int i = 0; i < 40; ++i)
+    (erodes_somewhere(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  std::printf(
+      "E2 at 5 au, spec defaults: min rate/coagulation %.4f at St = %.3g; net "
+      "erosion from f_s = %.4f\n",
+      worst, st_worst, hi);
+  EXPECT_GE(worst, 0.88);
+  EXPECT_LT(worst, 0.9);  // the (1 - f_s) dilution plus a loss: E2 is not inert
+  EXPECT_NEAR(hi, 0.90, 0.005);
+}
+
 // ---------------------------------------------- the V_g^2 normalisation of §3.5
 
 TEST(GrowthTurbulence, Vg2FactorScalesOnlyTheTurbulentTermAndIsReadFromTheScene) {
