@@ -292,7 +292,7 @@ TEST(GrowthErosionBalance, SpecDefaultsHardlyErodeAtAnySt) {
   // E2 rate stays >= 0.88 of the coagulation rate everywhere (measured: 0.889, at
   // St = 0.37); (2) the smallest f_s that gives net erosion at some St, found by
   // bisection on the rate's sign: 0.901 (at St ~ 0.37, where R_s/R_coag peaks; at St = 1,
-  // NetErosionWellAboveVEros above, it takes f_s > 0.93).
+  // in the test above, it takes f_s > 0.93).
   const LocalGas gas = mmsn_gas(5.0);
   const Species sp = ice_species();
   const double m = 1e10, phi = 1e-5;
