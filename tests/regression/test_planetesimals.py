@@ -134,10 +134,11 @@ def main():
             f"snapshot: {m_sub[-1]:.4e} = {f_ice} x {m_snow[-1]:.4e} g")
     # the snapshot times: t = 0, then n_snapshots log-spaced from t_first_yr to t_end_yr
     cfg = r.config["output"]
-    expect = np.concatenate(([0.0], np.geomspace(cfg["t_first_yr"], 3e4, cfg["n_snapshots"])))
+    expect = np.concatenate(([0.0], np.geomspace(cfg["t_first_yr"], cfg["t_end_yr"],
+                                                 cfg["n_snapshots"])))
     c.check(r.time.size == expect.size and np.allclose(r.time, expect, rtol=1e-12),
             f"snapshot times: 0 and {cfg['n_snapshots']} log-spaced from {cfg['t_first_yr']:g} "
-            f"to 3e4 yr ({r.time.size} rows)")
+            f"to {cfg['t_end_yr']:g} yr ({r.time.size} rows)")
     c.finish()
 
 

@@ -290,9 +290,11 @@ TEST(GrowthErosionBalance, SpecDefaultsHardlyErodeAtAnySt) {
   // (400 log-spaced St from 1e-6 to 1e4; m and phi enter the ratio to coagulation only
   // through the Brownian term, negligible here): (1) with f_s = 0.1, eps_eros = 1 the
   // E2 rate stays >= 0.88 of the coagulation rate everywhere (measured: 0.889, at
-  // St = 0.37); (2) the smallest f_s that gives net erosion at some St, found by
-  // bisection on the rate's sign: 0.901 (at St ~ 0.37, where R_s/R_coag peaks; at St = 1,
-  // in the test above, it takes f_s > 0.93).
+  // St = 0.37); (2) the smallest f_s that gives net erosion at some St: the rate is
+  // linear in f_s at fixed St, ratio = 1 - f_s (1 - B(St)), so it turns negative first
+  // where the f_s = 0.1 ratio is lowest, at f_s* = 0.1 / (1 - worst) = 0.901 (at St = 1,
+  // in the test above, it takes f_s > 0.93); checked on the code's own sign on both
+  // sides of f_s*.
   const LocalGas gas = mmsn_gas(5.0);
   const Species sp = ice_species();
   const double m = 1e10, phi = 1e-5;
@@ -305,30 +307,23 @@ TEST(GrowthErosionBalance, SpecDefaultsHardlyErodeAtAnySt) {
     return particle_rates(kSigmaD, m, phi, st, gas, sp, e2).dm_dt /
            particle_rates(kSigmaD, m, phi, st, gas, sp, none).dm_dt;
   };
+  std::vector<double> sts(400);
+  for (int k = 0; k < 400; ++k) sts[k] = std::pow(10.0, -6.0 + 10.0 * k / 399.0);
   double worst = 1.0, st_worst = 0.0;
-  for (int k = 0; k < 400; ++k) {
-    const double st = std::pow(10.0, -6.0 + 10.0 * k / 399.0);
+  for (double st : sts) {
     const double r = ratio(st, 0.1);
     if (r < worst) worst = r, st_worst = st;
   }
-  // smallest f_s with dm/dt < 0 at some St (the rate is linear in f_s at fixed St)
-  auto erodes_somewhere = [&](double f_s) {
-    for (int k = 0; k < 400; ++k)
-      if (ratio(std::pow(10.0, -6.0 + 10.0 * k / 399.0), f_s) < 0.0) return true;
-    return false;
-  };
-  double lo = 0.1, hi = 0.99;
-  ASSERT_FALSE(erodes_somewhere(lo));
-  ASSERT_TRUE(erodes_somewhere(hi));
-  for (int i = 0; i < 40; ++i)
-    (erodes_somewhere(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  const double f_star = 0.1 / (1.0 - worst);
   std::printf(
       "E2 at 5 au, spec defaults: min rate/coagulation %.4f at St = %.3g; net "
       "erosion from f_s = %.4f\n",
-      worst, st_worst, hi);
+      worst, st_worst, f_star);
   EXPECT_GE(worst, 0.88);
   EXPECT_LT(worst, 0.9);  // the (1 - f_s) dilution plus a loss: E2 is not inert
-  EXPECT_NEAR(hi, 0.90, 0.005);
+  EXPECT_NEAR(f_star, 0.90, 0.005);
+  EXPECT_LT(ratio(st_worst, 1.001 * f_star), 0.0);
+  for (double st : sts) EXPECT_GT(ratio(st, 0.999 * f_star), 0.0) << "St = " << st;
 }
 
 // ---------------------------------------------- the V_g^2 normalisation of §3.5
