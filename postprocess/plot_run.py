@@ -60,9 +60,13 @@ CHANNELS = (("coag", "direct coagulation", "tab:green"),
             ("si", "streaming instability", "tab:purple"))
 MONITOR_COLORS = ("k", "tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple",
                   "tab:brown", "tab:pink", "tab:olive", "tab:cyan")   # by increasing radius
-BUDGET_COLUMNS = (("dust on grid", "tab:blue"), ("planetesimals (coag.)", "tab:green"),
-                  ("planetesimals (SI)", "tab:purple"), ("through $r_\\mathrm{in}$", "tab:red"),
-                  ("sublimated", "tab:orange"))
+# label and colour of each built-in budget term; a term added by a new process is drawn
+# under its dataset name in the next colour of the cycle
+BUDGET_STYLE = {"m_dust": ("dust on grid", "tab:blue"),
+                "m_pl_coag": ("planetesimals (coag.)", "tab:green"),
+                "m_pl_si": ("planetesimals (SI)", "tab:purple"),
+                "m_out_inner": ("through $r_\\mathrm{in}$", "tab:red"),
+                "m_sublimated": ("sublimated", "tab:orange")}
 
 # r-t maps: output file and the keyword arguments of plot_map
 MAPS = (("rt_St.png", {"field": "St", "quantity": "Stokes number St", "cmap": "viridis",
@@ -553,33 +557,42 @@ def zone_view(run, formed):
 
 # --- mass budget -----------------------------------------------------------------------
 
+BUDGET_TERMS = ("m_dust", "m_pl_coag", "m_pl_si", "m_out_inner", "m_sublimated")
+
+
 def budget_series(run):
-    """(time [yr], columns (ns, 5) [M_earth], error (ns,) [M_earth], initial [M_earth],
-    source): /timeseries/mass_budget, else the snapshot totals (g -> M_earth)."""
+    """(time [yr], columns (ns, n_terms) [M_earth], error (ns,) [M_earth], initial
+    [M_earth], term names, source): /timeseries/mass_budget, else the snapshot totals
+    (g -> M_earth). The terms are the file's (mass_budget_columns, budget_terms), or the
+    five built-in ones of a file written before those attributes."""
     ts, snaps = run.timeseries, run.snapshots
     initial = None
     if run.time.size and run.time[0] <= 0 and "m_dust" in snaps:
         initial = snaps["m_dust"][0] / M_EARTH
     if "mass_budget" in ts and len(ts["time"]):
         budget = ts["mass_budget"]
-        columns, error = budget[:, :5], budget[:, 5]
+        names = run.budget_columns[:-1] or list(BUDGET_TERMS)
+        if len(names) + 1 != budget.shape[1]:
+            raise Skip(f"/timeseries/mass_budget has {budget.shape[1]} columns, its names "
+                       f"{len(names) + 1}")
+        columns, error = budget[:, :-1], budget[:, -1]
         if initial is None:
             initial = columns[0].sum()
-        return ts["time"], columns, error, initial, "/timeseries"
+        return ts["time"], columns, error, initial, names, "/timeseries"
     if "m_dust" not in snaps:
         raise Skip("no /timeseries/mass_budget and no /snapshots/m_dust")
+    names = run.budget_terms or list(BUDGET_TERMS)
     zero = np.zeros_like(snaps["m_dust"])
-    columns = np.stack([snaps.get(name, zero) for name in
-                        ("m_dust", "m_pl_coag", "m_pl_si", "m_out_inner", "m_sublimated")],
-                       axis=1) / M_EARTH
+    columns = np.stack([snaps.get(name, zero) for name in names], axis=1) / M_EARTH
     initial = columns[0].sum() if initial is None else initial
-    return run.time, columns, np.abs(columns.sum(axis=1) - initial), initial, "snapshots"
+    return (run.time, columns, np.abs(columns.sum(axis=1) - initial), initial, names,
+            "snapshots")
 
 
 def plot_mass_budget(run, out_path):
     """Dust on the grid, planetesimals (each channel), mass through r_in and sublimated
     [M_earth] vs t [yr]; below, |sum - initial| / initial."""
-    time, columns, error, initial, source = budget_series(run)
+    time, columns, error, initial, names, source = budget_series(run)
     positive = time > 0
     if not positive.any():
         raise Skip("no mass-budget sample at t > 0")
@@ -590,7 +603,10 @@ def plot_mass_budget(run, out_path):
                label=f"initial dust: {initial:.4g} " + r"$M_\oplus$")
     absent = []
     floor = initial * 10.0 ** -BUDGET_DECADES
-    for k, (label, colour) in enumerate(BUDGET_COLUMNS):
+    extra = iter(("tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray"))
+    for k, name in enumerate(names):
+        label, colour = BUDGET_STYLE.get(name, (name, None))
+        colour = colour or next(extra, "k")
         column = columns[positive, k]
         if not np.any(column > 0):
             absent.append(label)

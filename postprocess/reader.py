@@ -5,10 +5,12 @@ Layout (written by the C++ code):
     /grid/r_c, r_f   cell centres (N,) and faces (N+1,) [au]; /grid/area (N,) [cm^2]
     /disk/*          static gas-disk fields at cell centres (N,); attr r_snow_au
     /snapshots/*     time (nt,) [yr] and per-snapshot fields (nt, ...), e.g.
-                     sigma_d, sigma_g [g cm^-2] (nt, N), m_dust [g] (nt,)
+                     sigma_d, sigma_g [g cm^-2] (nt, N), m_dust [g] (nt,); attr
+                     budget_terms (";"-separated names of the mass-budget datasets)
     /timeseries/*    finer-sampled diagnostics: time (ns,) [yr], pebble_flux
                      [M_earth Myr^-1] and m_through [M_earth] (ns, n_monitors),
-                     mass_budget [M_earth] (ns, 6)
+                     mass_budget [M_earth] (ns, n_terms + 1); attr
+                     mass_budget_columns of the group (";"-separated, "error" last)
     /pebbles/r_au    pebble-flux monitor radii (n_monitors,) [au]; attr names
                      (";"-separated, same order)
     /summary/*       end-of-run numbers: 1-element datasets (m_pl_coag [M_earth],
@@ -48,6 +50,11 @@ class Run:
                     dataset, including "time" [yr]); {} if the file has none
         pebbles     dict name -> array of every /pebbles dataset (r_au [au]); {} if none
         pebble_names  monitor names (list of str, one per pebbles["r_au"] entry)
+        budget_terms  names of the /snapshots datasets [g] whose sum is the dust mass
+                    budget (list of str; [] for a file written before the attribute)
+        budget_columns  names of the /timeseries/mass_budget columns, "error" last
+                    ([] for a file written before the attribute: the six columns
+                    m_dust, m_pl_coag, m_pl_si, m_out_inner, m_sublimated, error)
         summary     dict name -> value of every /summary dataset: 1-element datasets as
                     float (m_pl_coag [M_earth], r_min_pl_coag [au], budget_error, ...),
                     others as arrays (t_first_pl (N,) [yr]); {} if absent
@@ -59,6 +66,7 @@ class Run:
     """
 
     def __init__(self, path, grid, disk, r_snow_au, snapshots, units, attrs, solver,
+                 budget_terms=(), budget_columns=(),
                  timeseries=None, pebbles=None, pebble_names=None, summary=None,
                  descriptions=None):
         self.path = str(path)
@@ -73,6 +81,8 @@ class Run:
         self.timeseries = timeseries or {}
         self.pebbles = pebbles or {}
         self.pebble_names = list(pebble_names or [])
+        self.budget_terms = list(budget_terms)
+        self.budget_columns = list(budget_columns)
         self.summary = summary or {}
         self.units = units
         self.descriptions = descriptions or {}
@@ -153,9 +163,20 @@ def load_run(path):
                    for name, a in _read_group(f, "summary").items()}
         attrs = {k: _to_str(v) for k, v in f.attrs.items()}
         solver = {k: _to_python(v) for k, v in f["solver"].attrs.items()} if "solver" in f else {}
+        budget_terms = _name_list(f, "snapshots", "budget_terms")
+        budget_columns = _name_list(f, "timeseries", "mass_budget_columns")
     return Run(path, grid, disk, r_snow_au, snapshots, units, attrs, solver,
+               budget_terms=budget_terms, budget_columns=budget_columns,
                timeseries=timeseries, pebbles=pebbles, pebble_names=pebble_names,
                summary=summary, descriptions=descriptions)
+
+
+def _name_list(f, group, attr):
+    """The ";"-separated names of attribute `attr` of `group` ([] when absent)."""
+    if group not in f or attr not in f[group].attrs:
+        return []
+    raw = _to_str(f[group].attrs[attr])
+    return [s for s in raw.split(";") if s]
 
 
 def _open_read_only(path):

@@ -56,10 +56,18 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
                   "inward dust mass flow through each /pebbles/r_au");
   out_.add_series("timeseries", "m_through", nm, "M_earth",
                   "cumulative dust mass through each /pebbles/r_au");
-  out_.add_series(
-      "timeseries", "mass_budget", 6, "M_earth",
-      "dust on grid, planetesimals (coagulation), planetesimals (SI), through "
-      "r_in, sublimated, |sum - initial| (columns)");
+  {  // one column per budget term (Simulation::budget_terms), then |sum - initial|
+    std::string labels, names;
+    for (const auto& term : sim.budget_terms()) {
+      labels += term.label + ", ";
+      names += term.name + ";";
+    }
+    out_.add_series("timeseries", "mass_budget", sim.budget_terms().size() + 1, "M_earth",
+                    "dust " + labels +
+                        "|sum - initial| (columns; attribute "
+                        "mass_budget_columns of /timeseries)");
+    out_.set_group_attr_string("timeseries", "mass_budget_columns", names + "error");
+  }
   if (t_start > 0.0) {  // restart: keep what was sampled up to the checkpoint
     try {
       h5::Handle g = h5::open_group(out_.file(), "timeseries");
@@ -134,15 +142,17 @@ void RunDiagnostics::sample(double t, std::span<const double> y) {
   std::vector<double> flux = sim_.pebble_flux(y), mass = sim_.pebble_mass(y);
   for (auto& f : flux) f /= kMearthPerMyr;
   for (auto& m : mass) m /= kMearth;
-  const auto [coag, si] = sim_.planetesimal_mass(y);
-  const double grid = sim_.dust_mass_on_grid(y), inner = sim_.dust_mass_out(y),
-               sub = sim_.dust_mass_sublimated(y);
-  const double err = std::abs(grid + coag + si + inner + sub - sim_.initial_dust_mass());
+  std::vector<double> budget = sim_.budget_masses(y);
+  double total = 0.0;
+  for (double& m : budget) {
+    total += m;
+    m /= kMearth;
+  }
+  budget.push_back(std::abs(total - sim_.initial_dust_mass()) / kMearth);
   rows_time_.push_back({t / kYr});
   rows_flux_.push_back(std::move(flux));
   rows_mass_.push_back(std::move(mass));
-  rows_budget_.push_back({grid / kMearth, coag / kMearth, si / kMearth, inner / kMearth,
-                          sub / kMearth, err / kMearth});
+  rows_budget_.push_back(std::move(budget));
 }
 
 void RunDiagnostics::flush() {
@@ -213,7 +223,8 @@ std::string RunDiagnostics::finish(double t, std::span<const double> y) {
   scalar("m_dust_final", sim_.dust_mass_on_grid(y) / kMearth, "M_earth",
          "dust left on the grid");
   scalar("budget_error", sim_.budget_error(y), "",
-         "|grid + planetesimals + r_in + sublimated - initial| / initial");
+         "|sum of the budget terms (mass_budget_columns of /timeseries) - initial| / "
+         "initial");
   txt << "  dust left on the grid: " << sim_.dust_mass_on_grid(y) / kMearth
       << " M_earth\n";
   out_.flush();

@@ -139,16 +139,19 @@ std::string restart_command(const RunArgs& a, const fs::path& chk) {
 }
 
 void print_budget(const Simulation& sim, std::span<const double> y) {
-  const double m0 = sim.initial_dust_mass();
-  const double grid = sim.dust_mass_on_grid(y), out = sim.dust_mass_out(y);
-  const auto [coag, si] = sim.planetesimal_mass(y);
-  const double sub = sim.dust_mass_sublimated(y);
-  std::printf(
-      "dust budget [M_earth]: on grid %.6g + planetesimals %.6g + through r_in %.6g + "
-      "sublimated %.6g = %.6g; initial %.6g; relative error %.2e\n",
-      grid / units::kMearth, (coag + si) / units::kMearth, out / units::kMearth,
-      sub / units::kMearth, (grid + coag + si + out + sub) / units::kMearth,
-      m0 / units::kMearth, sim.budget_error(y));
+  const auto masses = sim.budget_masses(y);
+  std::string terms;
+  double total = 0.0;
+  char buf[96];
+  for (std::size_t k = 0; k < masses.size(); ++k) {
+    std::snprintf(buf, sizeof buf, "%s%s %.6g", k ? " + " : "",
+                  sim.budget_terms()[k].label.c_str(), masses[k] / units::kMearth);
+    terms += buf;
+    total += masses[k];
+  }
+  std::printf("dust budget [M_earth]: %s = %.6g; initial %.6g; relative error %.2e\n",
+              terms.c_str(), total / units::kMearth,
+              sim.initial_dust_mass() / units::kMearth, sim.budget_error(y));
 }
 
 int run(const RunArgs& a) {

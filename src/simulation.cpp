@@ -305,6 +305,23 @@ Simulation::Simulation(const Config& cfg)
     if (inside[f - 1] && !inside[f])
       transport->set_snowline(*layout_, f, f_ice, growth ? codec_->qm_slot : -1);
   modules.push_back(std::move(transport));
+  // The dust mass budget (spec §8), in the column order of /timeseries/mass_budget. A
+  // process that removes dust from Sigma_d adds its term here (BudgetTerm).
+  const bool pl = planetesimals_ != nullptr;
+  budget_terms_ = {
+      {"m_dust", "on grid", "dust mass on the grid", true,
+       [this](std::span<const double> y) { return dust_mass_on_grid(y); }},
+      {"m_pl_coag", "planetesimals (coagulation)",
+       "planetesimal mass by direct coagulation", pl,
+       [this](std::span<const double> y) { return planetesimal_mass(y).first; }},
+      {"m_pl_si", "planetesimals (SI)", "planetesimal mass by streaming instability", pl,
+       [this](std::span<const double> y) { return planetesimal_mass(y).second; }},
+      {"m_out_inner", "through r_in", "cumulative dust mass that left through r_in", true,
+       [this](std::span<const double> y) { return dust_mass_out(y); }},
+      {"m_sublimated", "sublimated",
+       "cumulative ice that sublimated at the snow line (spec §6.3)", true,
+       [this](std::span<const double> y) { return dust_mass_sublimated(y); }},
+  };
   layout_->freeze();
   model_ = std::make_unique<DiskModel>(layout_, std::move(modules));
   model_->set_describer(
@@ -413,10 +430,15 @@ void Simulation::prepare_output(RunOutput& out) const {
   out.add_field("v_r", n + 1, "cm s^-1", "dust radial velocity on the faces");
   out.add_field("mdot_d", n + 1, "g s^-1",
                 "dust mass flow through the faces, positive outward");
-  out.add_field("m_dust", 0, "g", "dust mass on the grid");
-  out.add_field("m_out_inner", 0, "g", "cumulative dust mass that left through r_in");
-  out.add_field("m_sublimated", 0, "g",
-                "cumulative ice that sublimated at the snow line (spec §6.3)");
+  {
+    std::string names;
+    for (const auto& term : budget_terms_)
+      if (term.in_snapshots) {
+        out.add_field(term.name, 0, "g", term.description);
+        names += (names.empty() ? "" : ";") + term.name;
+      }
+    out.set_group_attr_string("snapshots", "budget_terms", names);
+  }
   {
     std::vector<double> r_mon;
     std::string names;
@@ -443,8 +465,6 @@ void Simulation::prepare_output(RunOutput& out) const {
         "t_first_pl", n, "yr",
         "time of first planetesimal formation in each cell so far (NaN: not yet; "
         "formed: Sigma_pl > /summary/formed_threshold)");
-    out.add_field("m_pl_coag", 0, "g", "planetesimal mass by direct coagulation");
-    out.add_field("m_pl_si", 0, "g", "planetesimal mass by streaming instability");
   }
   if (gas_.evolves())
     out.add_field("m_out_gas", 0, "g", "cumulative gas accreted through r_in");
@@ -475,13 +495,14 @@ std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
   f["St"] = std::move(st);
   f["v_r"] = transport_->face_velocity(y);
   f["mdot_d"] = transport_->mass_flow(y);
-  f["m_dust"] = {dust_mass_on_grid(y)};
-  f["m_out_inner"] = {dust_mass_out(y)};
-  f["m_sublimated"] = {dust_mass_sublimated(y)};
+  {
+    const auto masses = budget_masses(y);
+    for (std::size_t k = 0; k < budget_terms_.size(); ++k)
+      if (budget_terms_[k].in_snapshots) f[budget_terms_[k].name] = {masses[k]};
+  }
   f["m_through"] = pebble_mass(y);
   f["pebble_flux"] = pebble_flux(y);
   if (planetesimals_) {
-    const auto [coag, si] = planetesimal_mass(y);
     auto c = sigma_pl(y, false), s = sigma_pl(y, true);
     std::vector<double> total(n, 0.0);
     for (int i = 0; i < n; ++i)
@@ -489,8 +510,6 @@ std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
     f["sigma_pl"] = std::move(total);
     if (!c.empty()) f["sigma_pl_coag"] = std::move(c);
     if (!s.empty()) f["sigma_pl_si"] = std::move(s);
-    f["m_pl_coag"] = {coag};
-    f["m_pl_si"] = {si};
   }
   if (gas_.evolves())
     f["m_out_gas"] = {y[L.global_index(viscous_->m_out_slot())] * viscous_->mass_unit()};
@@ -561,10 +580,15 @@ std::vector<double> Simulation::pebble_mass(std::span<const double> y) const {
   return out;
 }
 
+std::vector<double> Simulation::budget_masses(std::span<const double> y) const {
+  std::vector<double> m;
+  for (const auto& term : budget_terms_) m.push_back(term.mass(y));
+  return m;
+}
+
 double Simulation::budget_error(std::span<const double> y) const {
-  const auto [coag, si] = planetesimal_mass(y);
-  const double total =
-      dust_mass_on_grid(y) + dust_mass_out(y) + dust_mass_sublimated(y) + coag + si;
+  double total = 0.0;
+  for (const double m : budget_masses(y)) total += m;
   return std::abs(total - dust_mass0_) / dust_mass0_;
 }
 

@@ -3,6 +3,7 @@
 //! modules the scene turns on, the state layout they register, the initial state, the
 //! tolerances and the output times. This is the factory: the only place (with main.cpp)
 //! that names concrete modules.
+#include <functional>
 #include <map>
 #include <memory>
 #include <span>
@@ -48,6 +49,21 @@ struct PebbleMonitor {
   int global_slot = -1;  //!< cumulative-mass variable (m_out_dust for r_in)
 };
 
+//! One term of the dust mass budget (spec §8): a place where part of the initial dust
+//! mass is now (on the grid, in planetesimals, through r_in, sublimated, ...). The terms
+//! sum to the initial dust mass up to the integration error, so a process that removes
+//! dust from Sigma_d books what it removes and registers a term (Simulation's
+//! constructor): the term is then written to /snapshots/<name> (when `in_snapshots`),
+//! to a column of /timeseries/mass_budget, and counted in the budget error, the
+//! printed budget and /summary/budget_error.
+struct BudgetTerm {
+  std::string name;          //!< dataset and column name ("m_out_inner")
+  std::string label;         //!< short text for the printed budget ("through r_in")
+  std::string description;   //!< dataset description
+  bool in_snapshots = true;  //!< false: a column of the time series only (process off)
+  std::function<double(std::span<const double>)> mass;  //!< [g] at state y
+};
+
 class Simulation {
  public:
   explicit Simulation(const Config& cfg);
@@ -87,7 +103,12 @@ class Simulation {
   std::vector<double> pebble_flux(std::span<const double> y) const;
   //! Cumulative dust mass through every monitor [g].
   std::vector<double> pebble_mass(std::span<const double> y) const;
-  //! |grid + r_in + sublimated + planetesimals - initial| / initial.
+  //! The terms of the dust mass budget, in the order of /timeseries/mass_budget's
+  //! columns (the error column comes after them).
+  const std::vector<BudgetTerm>& budget_terms() const { return budget_terms_; }
+  //! The mass of every budget term at state y [g].
+  std::vector<double> budget_masses(std::span<const double> y) const;
+  //! |sum of the budget terms - initial| / initial.
   double budget_error(std::span<const double> y) const;
   //! One-paragraph summary for `panoptic check` and the run header.
   std::string summary() const;
@@ -112,6 +133,7 @@ class Simulation {
   const PorousGrowth* growth_ = nullptr;
   const Planetesimals* planetesimals_ = nullptr;
   std::vector<PebbleMonitor> monitors_;
+  std::vector<BudgetTerm> budget_terms_;
   std::unique_ptr<DiskModel> model_;
   std::vector<double> sigma_d0_;
   double sigma_scale_ = 1.0, dust_mass0_ = 0.0;

@@ -48,13 +48,19 @@ def run(exe, scene, out, sets=(), expect=0):
     return run_checked(cmd, expect)
 
 
-def budget_error(snapshots):
-    """Largest relative error of the dust mass budget over the snapshots: grid + through
-    r_in + sublimated + planetesimals (the channels that are on) against the first."""
-    m = snapshots["m_dust"] + snapshots["m_out_inner"] + snapshots["m_sublimated"]
-    for ch in ("m_pl_coag", "m_pl_si"):
-        if ch in snapshots:
-            m = m + snapshots[ch]
+BUDGET_TERMS = ("m_dust", "m_out_inner", "m_sublimated", "m_pl_coag", "m_pl_si")
+
+
+def budget_error(snapshots, terms=None):
+    """Largest relative error of the dust mass budget over the snapshots: the sum of the
+    budget terms (attribute budget_terms of /snapshots, passed as `terms`; the built-in
+    ones of a file without it) against the first. The grid, r_in and sublimated terms are
+    required; a term that is neither listed nor present is a process that is off."""
+    names = list(terms) if terms else [t for t in BUDGET_TERMS if t in snapshots]
+    for t in BUDGET_TERMS[:3]:
+        if t not in names:
+            raise KeyError(f"budget term {t} missing from /snapshots")
+    m = sum(snapshots[t] for t in names)
     return float(np.max(np.abs(m / m[0] - 1)))
 
 

@@ -23,7 +23,10 @@ def check_budgets(cases, args, c):
         out = f"{args.workdir}/budget_{k}.h5"
         run(args.exe, scene, out, sets)
         r = load_run(out)
-        err = budget_error(r.snapshots)
+        c.check(r.budget_terms[:1] == ["m_dust"] and "m_out_inner" in r.budget_terms
+                and "m_sublimated" in r.budget_terms,
+                f"{label}: /snapshots names its budget terms ({r.budget_terms})")
+        err = budget_error(r.snapshots, r.budget_terms)
         m0 = r.snapshots["m_dust"][0]  # the initial dust, all on the grid
         left = r.snapshots["m_out_inner"][-1] / m0
         grid_mass = np.sum(r.snapshots["sigma_d"] * r.area, axis=1)

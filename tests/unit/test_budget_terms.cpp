@@ -1,0 +1,93 @@
+// The dust mass budget's terms (Simulation::budget_terms, spec §8) account for every
+// sink and source of dust: each term is linear in the state, so its rate of change is
+// the term evaluated on the right-hand side, and those rates must sum to zero, to
+// round-off, in a state where every process acts (growing, compacting and converting
+// cells, dust crossing the snow line and r_in). A process that removes dust from Sigma_d
+// without registering the mass it books fails this, in every scene that turns it on.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "src/config.hpp"
+#include "src/simulation.hpp"
+#include "src/units.hpp"
+#include "tests/unit/evolved_state.hpp"
+
+namespace panoptic {
+namespace {
+
+// Sum and sum of magnitudes of the terms' rates [g s^-1] at the evolved state.
+struct Rates {
+  double sum = 0.0, scale = 0.0;
+  std::map<std::string, double> by_term;
+};
+
+Rates budget_rates(const std::string& scene, const std::vector<std::string>& sets,
+                   double t_yr) {
+  Simulation sim(load_scene(std::string(PANOPTIC_SOURCE_DIR) + "/params/" + scene, sets));
+  const std::vector<double> y = evolved_state(sim, t_yr);
+  std::vector<double> ydot(y.size());
+  sim.model().rhs(t_yr * units::kYr, y, ydot);
+  Rates r;
+  const auto rates = sim.budget_masses(ydot);  // linear terms: d(mass)/dt = mass(ydot)
+  for (std::size_t k = 0; k < rates.size(); ++k) {
+    r.sum += rates[k];
+    r.scale += std::abs(rates[k]);
+    r.by_term[sim.budget_terms()[k].name] = rates[k];
+  }
+  return r;
+}
+
+// The rates must cancel to 1e-12 of their magnitudes; each term in `acting` must be at
+// least 1000 times that, so that leaving it out of the budget would fail the check.
+void expect_closed(const Rates& r, const std::vector<std::string>& acting) {
+  const double tol = 1e-12 * r.scale;
+  for (const auto& name : acting)
+    EXPECT_GT(std::abs(r.by_term.at(name)), 1e3 * tol)
+        << name << " hardly acts here: the check would not see it";
+  EXPECT_LT(std::abs(r.sum), tol) << "the budget terms' rates do not cancel";
+  std::printf("|sum of the rates| / sum of |rates| = %.1e\n", std::abs(r.sum) / r.scale);
+}
+
+TEST(BudgetTerms, RatesCancelInTheFiducialScene) {
+  // at 2 000 yr the inner disk converts dust to planetesimals by both channels, dust
+  // drifts through the snow line (sublimating) and through r_in
+  const Rates r = budget_rates("fiducial.toml", {"grid.n_cells=60"}, 2000.0);
+  expect_closed(r, {"m_dust", "m_pl_coag", "m_out_inner", "m_sublimated"});
+}
+
+TEST(BudgetTerms, RatesCancelWithEvolvingGasAndErosion) {
+  const Rates r = budget_rates(
+      "erosion_40.toml", {"grid.n_cells=60", "gas.evolve=true", "erosion.model=balance"},
+      2000.0);
+  expect_closed(r, {"m_dust", "m_pl_coag", "m_out_inner", "m_sublimated"});
+}
+
+TEST(BudgetTerms, RatesCancelWithFragmentation) {
+  const Rates r = budget_rates("compact_fragmentation.toml", {"grid.n_cells=60"}, 1e4);
+  expect_closed(r, {"m_dust", "m_out_inner", "m_sublimated"});
+}
+
+TEST(BudgetTerms, SnapshotsHoldEveryTermOfAProcessThatIsOn) {
+  const std::vector<std::string> sets{"grid.n_cells=20", "planetesimals.si=none"};
+  Simulation sim(
+      load_scene(std::string(PANOPTIC_SOURCE_DIR) + "/params/fiducial.toml", sets));
+  const auto y = sim.initial_state();
+  const auto fields = sim.snapshot_fields(y);
+  double total = 0.0;
+  for (const auto& term : sim.budget_terms()) {
+    EXPECT_TRUE(term.in_snapshots) << term.name;  // a channel that is off books 0
+    ASSERT_TRUE(fields.count(term.name)) << term.name;
+    total += fields.at(term.name).at(0);
+  }
+  EXPECT_NEAR(total / sim.initial_dust_mass(), 1.0, 1e-15);
+  EXPECT_EQ(sim.budget_error(y),
+            std::abs(total - sim.initial_dust_mass()) / sim.initial_dust_mass());
+}
+
+}  // namespace
+}  // namespace panoptic
