@@ -5,7 +5,10 @@
 //! transport is the dust transport's (they are its passengers); this module adds the
 //! local sources
 //!   dQ_m/dt   = Sigma_d d ln m/dt,      dQ_phi/dt = -Sigma_d d ln phi/dt,
-//! with the rates of physics/growth_rates.hpp. Cell Jacobian blocks: exact, by AD.
+//! with the rates of physics/growth_rates.hpp. Cell Jacobian blocks: exact, by AD, in
+//! Sigma_d, Q_m and Q_phi; with gas.evolve the gas is read at its value (CellGas::at), so
+//! the derivatives by Sigma_g through rho_g, the mean free path and nu_mol are left out
+//! (Newton converges with them missing; README, What works).
 //! Owns Q_m (growth.enabled) and Q_phi (porosity.enabled).
 #include <array>
 #include <memory>
