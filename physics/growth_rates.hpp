@@ -128,18 +128,20 @@ double log_of_constant(double x) {
 
 //! Stokes number of the small projectiles (spec §3, "velocity against small
 //! projectiles"): fixed (erosion.St_small), or that of a compact monomer (the default).
-inline double small_projectile_st(const GrowthOptions& o, const Species& sp,
-                                  const LocalGas& gas) {
-  if (o.st_small > 0.0) return o.st_small;
-  return stokes_number(sp.m0, 1.0, sp.rho0, gas, o.drag);
+//! (G: the gas's type, LocalGasT; AD where Sigma_g is differentiated.)
+template <class G>
+G small_projectile_st(const GrowthOptions& o, const Species& sp,
+                      const LocalGasT<G>& gas) {
+  if (o.st_small > 0.0) return G(o.st_small);
+  return stokes_number(G(sp.m0), G(1.0), sp.rho0, gas, o.drag);
 }
 
 //! The rates of the mass-dominating particle (m [g], phi, Stokes number St from
 //! stokes_number(), spec §2) in a cell with dust surface density sigma_d [g cm^-2].
 //! `a_known`, if given, is radius(m, phi, sp.rho0), already computed by the caller.
-template <class T>
+template <class T, class G>
 ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, const T& St,
-                                const LocalGas& gas, const Species& sp,
+                                const LocalGasT<G>& gas, const Species& sp,
                                 const GrowthOptions& o, const T* a_known = nullptr) {
   using std::pow;
   using std::sqrt;
@@ -168,7 +170,7 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
   T factor = frag;
   r.dv_ls = T(0.0);
   if (o.erosion != ErosionModel::kNone) {
-    const double st_s = small_projectile_st(o, sp, gas);
+    const G st_s = small_projectile_st(o, sp, gas);
     r.dv_ls = dv_small_projectile(r.St, m, st_s, sp.m0, gas, o.turbulence);  // spec §3
     // spec §5.2: S(x) = 1/2 [1 - tanh((x - 1)/w)], x = dv_ls / v_eros
     const T s = tanh_step<T>((1.0 - r.dv_ls / o.v_eros) / o.w_eros);
@@ -177,7 +179,7 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
     } else {  // E2: rate balance with an implicit reservoir of small projectiles
       // dm = (1 - f_s) dm_coag + f_s 2 sqrt(pi) a^2 dv_ls Sigma_d / h_bar [1 -
       // (1+e)(1-S)]
-      const double h_s = value_of(dust_scale_height(T(st_s), gas));
+      const G h_s = dust_scale_height(st_s, gas);
       const T h_bar = sqrt(r.h_d * r.h_d + h_s * h_s) / sqrt(2.0);
       factor = (1.0 - o.f_s) * frag + o.f_s / o.f_grow * (r.dv_ls / r.dv) *
                                           (r.h_d / h_bar) *

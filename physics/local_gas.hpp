@@ -17,28 +17,35 @@ inline constexpr double kMuDefault = 2.34;
 inline constexpr double kSigmaMolDefault = 2e-15;
 
 //! Gas quantities of one cell at the midplane, all cgs. Filled once per cell by the
-//! engine (directly, or with make_local_gas()); plain doubles, because the gas is not
-//! part of the dust Jacobian.
-struct LocalGas {
-  double sigma_g = 0.0;      //!< gas surface density [g cm^-2]
-  double rho_g = 0.0;        //!< midplane gas density [g cm^-3]
+//! engine (directly, or with make_local_gas()). The quantities that follow the gas
+//! surface density where the gas evolves (Sigma_g, rho_g, lambda, nu_mol) have the type
+//! G: double in the right-hand side and with static gas, AD in the Jacobian of a cell
+//! whose Sigma_g is a state variable (CellGas::at_ad), so that the particle laws are
+//! differentiated by Sigma_g too; the rest is fixed per cell.
+template <class G>
+struct LocalGasT {
+  G sigma_g = G(0.0);        //!< gas surface density [g cm^-2]
+  G rho_g = G(0.0);          //!< midplane gas density [g cm^-3]
   double temperature = 0.0;  //!< gas temperature [K] (Brownian motion)
   double c_s = 0.0;          //!< isothermal sound speed [cm s^-1]
   double v_th = 0.0;         //!< mean thermal speed sqrt(8/pi) c_s [cm s^-1]
   double omega_k = 0.0;      //!< Keplerian angular frequency [s^-1]
   double v_k = 0.0;          //!< Keplerian speed [cm s^-1]
   double h_g = 0.0;          //!< gas pressure scale height c_s/omega_k [cm]
-  double mfp = 0.0;          //!< molecular mean free path lambda [cm]
-  double nu_mol = 0.0;       //!< molecular kinematic viscosity [cm^2 s^-1]
+  G mfp = G(0.0);            //!< molecular mean free path lambda [cm]
+  G nu_mol = G(0.0);         //!< molecular kinematic viscosity [cm^2 s^-1]
   double alpha = 0.0;        //!< Shakura-Sunyaev turbulence parameter [-]
   double eta = 0.0;          //!< pressure-gradient parameter (headwind = eta v_k) [-]
   double v_r_gas = 0.0;      //!< radial gas velocity (0 for a static disk) [cm s^-1]
 
   //! Turbulent Reynolds number alpha c_s H / nu_mol (spec §1.5) [-].
-  double reynolds() const { return alpha * c_s * h_g / nu_mol; }
+  G reynolds() const { return alpha * c_s * h_g / nu_mol; }
   //! Headwind speed eta v_K (spec §1.4) [cm s^-1].
   double headwind() const { return eta * v_k; }
 };
+
+//! The gas of the right-hand side, of static gas, and of output.
+using LocalGas = LocalGasT<double>;
 
 //! Builds a LocalGas from the basic quantities of one cell.
 //! sigma_g [g cm^-2], temperature [K], r [cm], m_star [g], alpha [-], dlnp_dlnr: midplane

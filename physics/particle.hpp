@@ -13,8 +13,10 @@
 //! file: unqualified sqrt/exp/log/pow after `using std::...` (ADL finds Eigen's
 //! overloads), every intermediate is stored in a named T (never `auto`: Eigen's AutoDiff
 //! expressions reference temporaries), and no std::max/std::min on T (their derivative
-//! jumps): use soft_max/soft_min/logistic. Gas quantities are plain doubles
-//! (physics/local_gas.hpp): the gas is not differentiated.
+//! jumps): use soft_max/soft_min/logistic. The gas is a LocalGasT<G>
+//! (physics/local_gas.hpp): G = double, or AD where the Jacobian differentiates an
+//! evolving Sigma_g; quantities derived from its density-dependent fields are G, never
+//! double.
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -216,11 +218,11 @@ inline int binary_exponent(double x) {
 //! is saturated: that is decided from the binary exponent of x/x0, so those calls cost
 //! neither the log nor the exp (together 9 of each per cell and right-hand side on the
 //! fiducial scene).
-template <class T>
-T log_step(const T& x, double x0, double half_width_dex) {
+template <class T, class X0>
+T log_step(const T& x, const X0& x0, double half_width_dex) {
   using std::log;
   const double k = std::log(19.0) / (half_width_dex * std::log(10.0));
-  const double r = value_of(x) / x0;
+  const double r = value_of(x) / value_of(x0);
   if (r > 0.0 && r <= std::numeric_limits<double>::max()) {
     // log2 r lies in [e, e + 1)
     const int e = binary_exponent(r);
@@ -267,23 +269,23 @@ T monomer_count(const T& m, double m0) {
 
 //! Epstein Stokes number St = t_s Omega_K with t_s = rho_int a / (rho_g v_th) (spec §2;
 //! Epstein 1924). At the midplane this equals pi rho_int a / (2 Sigma_g) [-].
-template <class T>
-T stokes_epstein(const T& a, const T& rho_int, const LocalGas& gas) {
+template <class T, class G>
+T stokes_epstein(const T& a, const T& rho_int, const LocalGasT<G>& gas) {
   return rho_int * a * (gas.omega_k / (gas.rho_g * gas.v_th));
 }
 
 //! x = 4 a / (9 lambda): Stokes/Epstein stopping-time ratio at Re_p < 1 (spec §2) [-].
 //! t_Stokes = 2 rho_int a^2 / (9 nu_mol rho_g) = x t_Epstein when nu_mol = v_th lambda
 //! / 2.
-template <class T>
-T knudsen_ratio(const T& a, const LocalGas& gas) {
+template <class T, class G>
+T knudsen_ratio(const T& a, const LocalGasT<G>& gas) {
   return 4.0 * a / (9.0 * gas.mfp);
 }
 
 //! Laminar particle-gas speed dv_pg = eta v_K St sqrt(4 + St^2) / (1 + St^2) (spec §2;
 //! Nakagawa, Sekiya & Hayashi 1986 radial and azimuthal drift combined) [cm s^-1].
-template <class T>
-T gas_drift_speed(const T& St, const LocalGas& gas) {
+template <class T, class G>
+T gas_drift_speed(const T& St, const LocalGasT<G>& gas) {
   using std::sqrt;
   const T st2 = St * St;
   const T shape = St * sqrt(4.0 + st2) / (1.0 + st2);
@@ -299,8 +301,8 @@ T gas_drift_speed_log_slope(const T& St) {
 }
 
 //! Particle Reynolds number Re_p = 2 a dv_pg / nu_mol (spec §2) [-].
-template <class T>
-T particle_reynolds(const T& a, const T& dv_pg, const LocalGas& gas) {
+template <class T, class G>
+T particle_reynolds(const T& a, const T& dv_pg, const LocalGasT<G>& gas) {
   return 2.0 * a * dv_pg / gas.nu_mol;
 }
 
@@ -362,8 +364,8 @@ T drag_regime_factor(const T& x, const T& re_p) {
 //! point). No call of the fiducial run took more than four steps; we allow 6.
 //! stokes_number_of_radius() is the same law for a known radius a = radius(m, phi, rho0)
 //! (the growth model's St cache keeps a for the rates; the same bits).
-template <class T>
-T stokes_number_of_radius(const T& a, const T& phi, double rho0, const LocalGas& gas,
+template <class T, class G>
+T stokes_number_of_radius(const T& a, const T& phi, double rho0, const LocalGasT<G>& gas,
                           DragLaw law = DragLaw::kStokesRe,
                           int iterations = kDragIterations) {
   using std::exp;
@@ -439,8 +441,8 @@ T stokes_number_of_radius(const T& a, const T& phi, double rho0, const LocalGas&
 }
 
 //! Stokes number of an aggregate of mass m [g] and filling factor phi (above).
-template <class T>
-T stokes_number(const T& m, const T& phi, double rho0, const LocalGas& gas,
+template <class T, class G>
+T stokes_number(const T& m, const T& phi, double rho0, const LocalGasT<G>& gas,
                 DragLaw law = DragLaw::kStokesRe, int iterations = kDragIterations) {
   return stokes_number_of_radius(radius(m, phi, rho0), phi, rho0, gas, law, iterations);
 }
@@ -451,8 +453,8 @@ T stokes_number(const T& m, const T& phi, double rho0, const LocalGas& gas,
 
 //! Dust scale height h_d = H [1 + (St/alpha)(1 + 2 St)/(1 + St)]^(-1/2) (spec §2; Youdin
 //! & Lithwick 2007 with Sc = 1, as used by Okuzumi et al. 2012) [cm].
-template <class T>
-T dust_scale_height(const T& St, const LocalGas& gas) {
+template <class T, class G>
+T dust_scale_height(const T& St, const LocalGasT<G>& gas) {
   using std::sqrt;
   const T settling = (St / gas.alpha) * (1.0 + 2.0 * St) / (1.0 + St);
   return gas.h_g / sqrt(1.0 + settling);
@@ -466,8 +468,8 @@ T midplane_dust_density(const T& sigma_d, const T& h_d) {
 }
 
 //! Midplane dust-to-gas ratio eps_mid = rho_d / rho_g (spec §2) [-].
-template <class T>
-T midplane_dust_to_gas(const T& sigma_d, const T& h_d, const LocalGas& gas) {
+template <class T, class G>
+T midplane_dust_to_gas(const T& sigma_d, const T& h_d, const LocalGasT<G>& gas) {
   return midplane_dust_density(sigma_d, h_d) / gas.rho_g;
 }
 

@@ -83,6 +83,13 @@ class Planetesimals : public PhysicsModule {
  private:
   template <class T>
   void cell_rates(int cell, const T* yc, T& coag, T& si) const;
+  //! The same with the cell's gas `g` (LocalGas, or LocalGasT<AD> where Sigma_g evolves
+  //! and is differentiated).
+  template <class T, class G>
+  void cell_rates_with(int cell, const T* yc, const physics::LocalGasT<G>& g, T& coag,
+                       T& si) const;
+  //! cell_rates_with on CellGas::at_ad (physics/evolving_gas_ad.cpp).
+  void cell_rates_ad_gas(int cell, const AD* yc, AD& coag, AD& si) const;
 
   const StateLayout& layout_;
   const ParticleCodec& codec_;

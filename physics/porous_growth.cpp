@@ -4,6 +4,8 @@
 #include <cmath>
 #include <type_traits>
 
+#include "physics/evolving_gas_ad.hpp"
+
 namespace panoptic {
 
 using physics::LocalGas;
@@ -26,22 +28,27 @@ std::array<double, 4> cell_key(const ParticleCodec& codec, int gas_slot, const T
           gas_slot >= 0 ? value_of(yc[gas_slot]) : 0.0};
 }
 
-//! The state components the particle laws are differentiated by: Sigma_d, Q_m and (with
-//! porosity) Q_phi, as the derivative directions 0, 1, 2 of a per-cell evaluation whose
-//! gradient ad_chain carries onto each caller's seeds.
+//! The state components the particle laws are differentiated by: Sigma_d, Q_m, (with
+//! porosity) Q_phi and (with evolving gas) Sigma_g, as the derivative directions 0..n-1
+//! of a per-cell evaluation whose gradient ad_chain carries onto each caller's seeds.
 struct Seeds {
-  int slots[3];
-  int n;
-  explicit Seeds(const ParticleCodec& codec)
-      : slots{codec.sigma_slot, codec.qm_slot,
-              codec.qphi_slot >= 0 ? codec.qphi_slot : codec.sigma_slot},
-        n(codec.qphi_slot >= 0 ? 3 : 2) {}
-  //! The cell's state at `key` with the seeds as the AD directions; the gas is read at
-  //! its value (CellGas::at).
-  void seed(const std::array<double, 4>& key, int gas_slot, AD* local) const {
+  int slots[4];
+  int key_index[4];  // entry of cell_key for each direction
+  int n = 0;
+  Seeds(const ParticleCodec& codec, int gas_slot) {
+    add(codec.sigma_slot, 0);
+    add(codec.qm_slot, 1);
+    if (codec.qphi_slot >= 0) add(codec.qphi_slot, 2);
+    if (gas_slot >= 0) add(gas_slot, 3);
+  }
+  void add(int slot, int key) {
+    slots[n] = slot;
+    key_index[n++] = key;
+  }
+  //! The cell's state at `key` with the seeds as the AD directions.
+  void seed(const std::array<double, 4>& key, AD* local) const {
     for (int i = 0; i < kMaxLocalDerivs; ++i) local[i] = AD(0.0);
-    for (int i = 0; i < n; ++i) local[slots[i]] = ad_seed(key[i], i);
-    if (gas_slot >= 0) local[gas_slot] = AD(key[3]);
+    for (int i = 0; i < n; ++i) local[slots[i]] = ad_seed(key[key_index[i]], i);
   }
 };
 }  // namespace
@@ -79,6 +86,27 @@ template double ParticleCodec::phi<double>(const double*) const;
 template AD ParticleCodec::mass<AD>(int, const AD*) const;
 template AD ParticleCodec::phi<AD>(const AD*) const;
 
+physics::LocalGasT<AD> CellGas::at_ad(int cell, const AD* yc) const {
+  // as scaled(), with the ratio carrying the derivatives of Sigma_g
+  const LocalGas& g0 = initial_[cell];
+  physics::LocalGasT<AD> g;
+  g.temperature = g0.temperature;
+  g.c_s = g0.c_s;
+  g.v_th = g0.v_th;
+  g.omega_k = g0.omega_k;
+  g.v_k = g0.v_k;
+  g.h_g = g0.h_g;
+  g.alpha = g0.alpha;
+  g.eta = g0.eta;
+  g.v_r_gas = g0.v_r_gas;
+  const AD ratio = yc[gas_.slot] / g0.sigma_g;
+  g.sigma_g = g0.sigma_g * ratio;
+  g.rho_g = g0.rho_g * ratio;
+  g.mfp = g0.mfp / ratio;
+  g.nu_mol = g0.nu_mol / ratio;
+  return g;
+}
+
 LocalGas CellGas::scaled(int cell, double sigma_g) const {
   // Density-dependent quantities follow the evolving Sigma_g (spec §1.3, §1.6); the
   // pressure gradient (eta) stays that of the initial gas.
@@ -115,17 +143,22 @@ double GrowthStokes::St(int cell, const double* yc) const {
 AD GrowthStokes::St(int cell, const AD* yc) const {
   if (ad_cache_.empty()) ad_cache_.resize(species_.size());
   const auto key = cell_key(codec_, gas_.evolves_slot(), yc);
-  const Seeds seeds(codec_);
+  const Seeds seeds(codec_, gas_.evolves_slot());
   AdEntry& e = ad_cache_[cell];
   if (e.key != key) {
-    // St depends on the state through m and phi (Sigma_d, Q_m, Q_phi): evaluate once.
+    // St depends on the state through m and phi (Sigma_d, Q_m, Q_phi) and the gas
+    // density (Sigma_g): evaluate once.
     AD local[kMaxLocalDerivs];
-    seeds.seed(key, gas_.evolves_slot(), local);
-    const AD st = physics::stokes_number(codec_.mass(cell, local), codec_.phi(local),
-                                         species_[cell].rho0, gas_.at(cell, local), law_);
+    seeds.seed(key, local);
+    const AD m = codec_.mass(cell, local), phi = codec_.phi(local);
+    const double rho0 = species_[cell].rho0;
+    const AD st =
+        gas_.evolves_slot() >= 0
+            ? physics::stokes_number_ad_gas(m, phi, rho0, gas_.at_ad(cell, local), law_)
+            : physics::stokes_number(m, phi, rho0, gas_.at(cell, local), law_);
     e.key = key;
     e.st = st.value();
-    for (int i = 0; i < 3; ++i) e.grad[i] = i < seeds.n ? st.derivatives()[i] : 0.0;
+    for (int i = 0; i < 4; ++i) e.grad[i] = i < seeds.n ? st.derivatives()[i] : 0.0;
   }
   return ad_chain(e.st, e.grad.data(), seeds.slots, seeds.n, yc);
 }
@@ -159,9 +192,12 @@ physics::ParticleRates<T> PorousGrowth::compute_rates(int cell, const T* yc) con
     return physics::particle_rates(yc[codec_.sigma_slot], p.m, p.phi, p.st,
                                    gas_.at(cell, yc), species_[cell], opt_, &p.a);
   } else {
-    return physics::particle_rates(yc[codec_.sigma_slot], codec_.mass(cell, yc),
-                                   codec_.phi(yc), stokes_.St(cell, yc),
-                                   gas_.at(cell, yc), species_[cell], opt_);
+    const T m = codec_.mass(cell, yc), phi = codec_.phi(yc), st = stokes_.St(cell, yc);
+    if (gas_.evolves_slot() >= 0)
+      return physics::particle_rates_ad_gas(yc[codec_.sigma_slot], m, phi, st,
+                                            gas_.at_ad(cell, yc), species_[cell], opt_);
+    return physics::particle_rates(yc[codec_.sigma_slot], m, phi, st, gas_.at(cell, yc),
+                                   species_[cell], opt_);
   }
 }
 
@@ -182,18 +218,19 @@ const physics::ParticleRates<double>& PorousGrowth::cell_rates(int cell,
 void PorousGrowth::rates_ad(int cell, const AD* yc, AD& dlnm_dt, AD& dlnphi_dt) const {
   if (ad_memo_.empty()) ad_memo_.resize(species_.size());
   const auto key = cell_key(codec_, gas_.evolves_slot(), yc);
-  const Seeds seeds(codec_);
+  const Seeds seeds(codec_, gas_.evolves_slot());
   const int n = seeds.n;
   AdRates& e = ad_memo_[cell];
   if (e.key != key) {
-    // The rates depend on the state through Sigma_d, m and phi: evaluate once.
+    // The rates depend on the state through Sigma_d, m, phi and the gas density: evaluate
+    // once.
     AD local[kMaxLocalDerivs];
-    seeds.seed(key, gas_.evolves_slot(), local);
+    seeds.seed(key, local);
     const auto r = compute_rates(cell, local);
     e.key = key;
     e.dlnm = r.dlnm_dt.value();
     e.dlnphi = r.dlnphi_dt.value();
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 4; ++i) {
       e.grad_m[i] = i < n ? r.dlnm_dt.derivatives()[i] : 0.0;
       e.grad_phi[i] = i < n ? r.dlnphi_dt.derivatives()[i] : 0.0;
     }

@@ -6,9 +6,7 @@
 //! local sources
 //!   dQ_m/dt   = Sigma_d d ln m/dt,      dQ_phi/dt = -Sigma_d d ln phi/dt,
 //! with the rates of physics/growth_rates.hpp. Cell Jacobian blocks: exact, by AD, in
-//! Sigma_d, Q_m and Q_phi; with gas.evolve the gas is read at its value (CellGas::at), so
-//! the derivatives by Sigma_g through rho_g, the mean free path and nu_mol are left out
-//! (Newton converges with them missing; README, What works).
+//! Sigma_d, Q_m, Q_phi and (gas.evolve) Sigma_g.
 //! Owns Q_m (growth.enabled) and Q_phi (porosity.enabled).
 #include <array>
 #include <memory>
@@ -51,12 +49,15 @@ class CellGas {
  public:
   CellGas(std::vector<physics::LocalGas> initial, const GasColumn& gas)
       : initial_(std::move(initial)), gas_(gas) {}
-  //! The gas of `cell` whose state is `yc` (double or AD: the gas is read at the value).
+  //! The gas of `cell` whose state is `yc`, read at its value (the RHS, and static gas).
   template <class T>
   physics::LocalGas at(int cell, const T* yc) const {
     if (!gas_.evolves()) return initial_[cell];
     return scaled(cell, value_of(yc[gas_.slot]));
   }
+  //! The same with the density-dependent quantities as functions of Sigma_g (AD), for
+  //! Jacobians of cells whose gas evolves (call only then).
+  physics::LocalGasT<AD> at_ad(int cell, const AD* yc) const;
   const physics::LocalGas& initial(int cell) const { return initial_[cell]; }
   //! Slot of Sigma_g in the cell state, or -1 for static gas.
   int evolves_slot() const { return gas_.slot; }
@@ -95,7 +96,7 @@ class GrowthStokes : public StokesModel {
   struct AdEntry {
     std::array<double, kKey> key{-1.0, -1.0, -1.0, -1.0};
     double st = 0.0;
-    std::array<double, 3> grad{};  // d St / d (Sigma_d, Q_m, Q_phi)
+    std::array<double, 4> grad{};  // d St / d (Sigma_d, Q_m, Q_phi, Sigma_g)
   };
   mutable std::vector<AdEntry> ad_cache_;
   const ParticleCodec& codec_;
@@ -150,7 +151,7 @@ class PorousGrowth : public PhysicsModule {
   struct AdRates {
     std::array<double, kKey> key{-1.0, -1.0, -1.0, -1.0};
     double dlnm = 0.0, dlnphi = 0.0;
-    std::array<double, 3> grad_m{}, grad_phi{};
+    std::array<double, 4> grad_m{}, grad_phi{};
   };
   mutable std::vector<AdRates> ad_memo_;
 };

@@ -50,16 +50,16 @@ T beta_oc07(const T& eps, double y_a = kOc07Ya) {
 
 //! Radial drift v_r = (-2 St eta v_K + v_r,gas) / (1 + St^2) (spec §3.2, §6.1; Nakagawa,
 //! Sekiya & Hayashi 1986; Takeuchi & Lin 2002) [cm s^-1].
-template <class T>
-T v_radial_drift(const T& St, const LocalGas& gas) {
+template <class T, class G>
+T v_radial_drift(const T& St, const LocalGasT<G>& gas) {
   const T denom = 1.0 + St * St;
   return (-2.0 * gas.headwind() * St + gas.v_r_gas) / denom;
 }
 
 //! Azimuthal velocity relative to Keplerian, v_phi - v_K = -eta v_K / (1 + St^2)
 //! (spec §3.3; Nakagawa, Sekiya & Hayashi 1986) [cm s^-1].
-template <class T>
-T v_azimuthal_offset(const T& St, const LocalGas& gas) {
+template <class T, class G>
+T v_azimuthal_offset(const T& St, const LocalGasT<G>& gas) {
   const T denom = 1.0 + St * St;
   return -gas.headwind() / denom;
 }
@@ -67,8 +67,8 @@ T v_azimuthal_offset(const T& St, const LocalGas& gas) {
 //! Settling speed at z = h_d, v_z = h_d Omega St / (1 + St) (spec §3.4; Okuzumi et al.
 //! 2012, the St/(1+St) form caps it at the free-fall-like h_d Omega for St >> 1) [cm
 //! s^-1].
-template <class T>
-T v_settling(const T& St, const LocalGas& gas) {
+template <class T, class G>
+T v_settling(const T& St, const LocalGasT<G>& gas) {
   const T h_d = dust_scale_height(St, gas);
   return h_d * gas.omega_k * St / (1.0 + St);
 }
@@ -79,29 +79,29 @@ T v_settling(const T& St, const LocalGas& gas) {
 
 //! Brownian motion, dv_B^2 = 8 k_B T (m1 + m2) / (pi m1 m2) (spec §3.1) [cm^2 s^-2];
 //! m1, m2 [g].
-template <class T>
-T dv2_brownian(const T& m1, const T& m2, const LocalGas& gas) {
+template <class T, class G>
+T dv2_brownian(const T& m1, const T& m2, const LocalGasT<G>& gas) {
   const double kt = units::kBoltzmann * gas.temperature;
   return 8.0 * kt * (m1 + m2) / (units::kPi * m1 * m2);
 }
 
 //! Radial drift, (v_r,1 - v_r,2)^2 (spec §3.2) [cm^2 s^-2].
-template <class T>
-T dv2_radial(const T& St1, const T& St2, const LocalGas& gas) {
+template <class T, class G>
+T dv2_radial(const T& St1, const T& St2, const LocalGasT<G>& gas) {
   const T d = v_radial_drift(St1, gas) - v_radial_drift(St2, gas);
   return d * d;
 }
 
 //! Azimuthal drift, (eta v_K [1/(1 + St1^2) - 1/(1 + St2^2)])^2 (spec §3.3) [cm^2 s^-2].
-template <class T>
-T dv2_azimuthal(const T& St1, const T& St2, const LocalGas& gas) {
+template <class T, class G>
+T dv2_azimuthal(const T& St1, const T& St2, const LocalGasT<G>& gas) {
   const T d = v_azimuthal_offset(St1, gas) - v_azimuthal_offset(St2, gas);
   return d * d;
 }
 
 //! Vertical settling, (v_z,1 - v_z,2)^2, each at its own z = h_d (spec §3.4) [cm^2 s^-2].
-template <class T>
-T dv2_vertical(const T& St1, const T& St2, const LocalGas& gas) {
+template <class T, class G>
+T dv2_vertical(const T& St1, const T& St2, const LocalGasT<G>& gas) {
   const T d = v_settling(St1, gas) - v_settling(St2, gas);
   return d * d;
 }
@@ -126,12 +126,13 @@ T dv2_vertical(const T& St1, const T& St2, const LocalGas& gas) {
 //!   St_hi = soft_max(St1, St2, 32),  eps = soft_min(St1, St2, 32) / St_hi.
 //! For St2/St1 <= 0.8 this equals the hard order to < 1e-4 (1e-11 for the eps = 0.5
 //! pair); for equal sizes it raises St_hi by 2^(1/32) = 1.022 and gives eps = 0.958.
-template <class T>
-T dv2_turbulent(const T& St1, const T& St2, const LocalGas& gas,
+template <class T, class G>
+T dv2_turbulent(const T& St1, const T& St2, const LocalGasT<G>& gas,
                 const TurbulenceModel& model = {}) {
   // OC07 normalisation V_g^2 and St_eta = t_eta/t_L = Re^-1/2
   const double vg2 = model.vg2_factor * gas.alpha * gas.c_s * gas.c_s;
-  const double st_eta = 1.0 / std::sqrt(gas.reynolds());
+  using std::sqrt;
+  const G st_eta = 1.0 / sqrt(gas.reynolds());
   const T g1 = St1 * St1 / (St1 + st_eta);
   const T g2 = St2 * St2 / (St2 + st_eta);
   const T tight = (St1 - St2) / (St1 + St2) * (g1 - g2);
@@ -159,9 +160,9 @@ struct RelativeVelocity2 {
 };
 
 //! All components for particles (St1, m1) and (St2, m2) [cm^2 s^-2].
-template <class T>
+template <class T, class G>
 RelativeVelocity2<T> relative_velocity2(const T& St1, const T& St2, const T& m1,
-                                        const T& m2, const LocalGas& gas,
+                                        const T& m2, const LocalGasT<G>& gas,
                                         const TurbulenceModel& model = {}) {
   return {dv2_brownian(m1, m2, gas), dv2_radial(St1, St2, gas),
           dv2_azimuthal(St1, St2, gas), dv2_vertical(St1, St2, gas),
@@ -170,8 +171,8 @@ RelativeVelocity2<T> relative_velocity2(const T& St1, const T& St2, const T& m1,
 
 //! Total relative speed dv = sqrt(dv_B^2 + dv_r^2 + dv_phi^2 + dv_z^2 + dv_t^2) (spec
 //! §3.6) [cm s^-1]. Smooth: the Brownian term keeps the radicand positive.
-template <class T>
-T dv_total(const T& St1, const T& St2, const T& m1, const T& m2, const LocalGas& gas,
+template <class T, class G>
+T dv_total(const T& St1, const T& St2, const T& m1, const T& m2, const LocalGasT<G>& gas,
            const TurbulenceModel& model = {}) {
   using std::sqrt;
   const T dv2 = relative_velocity2(St1, St2, m1, m2, gas, model).total();
@@ -182,8 +183,8 @@ T dv_total(const T& St1, const T& St2, const T& m1, const T& m2, const LocalGas&
 //! with its partner of the same filling factor (spec §3 pair convention; Sato, Okuzumi &
 //! Ida 2016): St2 = eps St and, with Epstein scaling St ~ a, m2 = eps^3 m (used only by
 //! the Brownian term, which matters only for Epstein-sized grains) [cm s^-1].
-template <class T>
-T dv_pair(const T& St, const T& m, const LocalGas& gas, double eps = kPairSizeRatio,
+template <class T, class G>
+T dv_pair(const T& St, const T& m, const LocalGasT<G>& gas, double eps = kPairSizeRatio,
           const TurbulenceModel& model = {}) {
   const T st2 = eps * St;
   const T m2 = (eps * eps * eps) * m;
@@ -192,9 +193,9 @@ T dv_pair(const T& St, const T& m, const LocalGas& gas, double eps = kPairSizeRa
 
 //! Speed dv_ls of the target (St, m) against small projectiles of Stokes number st_s and
 //! mass m_s (spec §3, erosion; default projectile a monomer, or St_s = 1e-4) [cm s^-1].
-template <class T>
-T dv_small_projectile(const T& St, const T& m, double st_s, double m_s,
-                      const LocalGas& gas, const TurbulenceModel& model = {}) {
+template <class T, class S, class G>
+T dv_small_projectile(const T& St, const T& m, const S& st_s, double m_s,
+                      const LocalGasT<G>& gas, const TurbulenceModel& model = {}) {
   return dv_total(St, T(st_s), m, T(m_s), gas, model);
 }
 
@@ -204,32 +205,32 @@ T dv_small_projectile(const T& St, const T& m, double st_s, double m_s,
 // ---------------------------------------------------------------------------------------------
 
 //! Brownian speed [cm s^-1].
-template <class T>
-T dv_brownian(const T& m1, const T& m2, const LocalGas& gas) {
+template <class T, class G>
+T dv_brownian(const T& m1, const T& m2, const LocalGasT<G>& gas) {
   using std::sqrt;
   return sqrt(dv2_brownian(m1, m2, gas));
 }
 //! |v_r,1 - v_r,2| [cm s^-1].
-template <class T>
-T dv_radial(const T& St1, const T& St2, const LocalGas& gas) {
+template <class T, class G>
+T dv_radial(const T& St1, const T& St2, const LocalGasT<G>& gas) {
   using std::abs;
   return abs(v_radial_drift(St1, gas) - v_radial_drift(St2, gas));
 }
 //! |v_phi,1 - v_phi,2| [cm s^-1].
-template <class T>
-T dv_azimuthal(const T& St1, const T& St2, const LocalGas& gas) {
+template <class T, class G>
+T dv_azimuthal(const T& St1, const T& St2, const LocalGasT<G>& gas) {
   using std::abs;
   return abs(v_azimuthal_offset(St1, gas) - v_azimuthal_offset(St2, gas));
 }
 //! |v_z,1 - v_z,2| [cm s^-1].
-template <class T>
-T dv_vertical(const T& St1, const T& St2, const LocalGas& gas) {
+template <class T, class G>
+T dv_vertical(const T& St1, const T& St2, const LocalGasT<G>& gas) {
   using std::abs;
   return abs(v_settling(St1, gas) - v_settling(St2, gas));
 }
 //! Turbulent speed [cm s^-1].
-template <class T>
-T dv_turbulent(const T& St1, const T& St2, const LocalGas& gas,
+template <class T, class G>
+T dv_turbulent(const T& St1, const T& St2, const LocalGasT<G>& gas,
                const TurbulenceModel& model = {}) {
   using std::sqrt;
   return sqrt(dv2_turbulent(St1, St2, gas, model));

@@ -258,6 +258,27 @@ TEST(Jacobian, PlanetesimalsStreamingInstabilityZcrit) {
       "planetesimals, SI zcrit");
 }
 
+// Growth on evolving gas: the particle laws depend on Sigma_g through rho_g, the mean
+// free path and nu_mol (St, the relative speeds, the small projectiles' St, the SI
+// triggers), so the growth, Stokes and planetesimal blocks have d/dSigma_g entries
+// (CellGas::at_ad). Read at its value instead, the gas left them out: errors 0.36
+// (porous) and 0.55 (compact) relative in those entries.
+TEST(Jacobian, GrowthOnEvolvingGas) {
+  expect_exact_growth({"gas.evolve=true"}, "growth, phi = 1, evolving gas");
+  expect_exact_growth({"gas.evolve=true", "porosity.enabled=true"},
+                      "porous growth, evolving gas");
+}
+
+TEST(Jacobian, ErosionAndPlanetesimalsOnEvolvingGas) {
+  expect_exact_growth({"gas.evolve=true", "porosity.enabled=true",
+                       "erosion.model=\"balance\"", "planetesimals.coagulation=true",
+                       "planetesimals.si=\"d16\"", "dust.dust_to_gas=0.5"},
+                      "E2 erosion + planetesimals (coagulation, d16), evolving gas");
+  expect_exact_growth(
+      {"gas.evolve=true", "planetesimals.si=\"zcrit\"", "dust.dust_to_gas=0.006"},
+      "SI zcrit, evolving gas");
+}
+
 // The limited advection with passengers (Q_m, Q_phi) through the snow line, where the
 // received flows of Q_m mix in the flow of Sigma_d: the far-cell entries of every row.
 TEST(Jacobian, GrowthSnowLineVanLeer) {
