@@ -32,4 +32,14 @@ void rename_or_throw(const std::filesystem::path& from, const std::filesystem::p
                   std::strerror(errno) + ")");
 }
 
+void refuse_output_is_input(const std::filesystem::path& output,
+                            const std::filesystem::path& input, const std::string& what) {
+  std::error_code ec;
+  if (std::filesystem::equivalent(output, input, ec) && !ec)
+    throw ConfigError("-o " + output.string() + ": this is " + what + " (" +
+                      input.string() +
+                      ") the command reads; --overwrite would replace it: choose another "
+                      "output file with -o");
+}
+
 }  // namespace panoptic

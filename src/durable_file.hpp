@@ -2,6 +2,7 @@
 //! Files that survive a crash: fsync of a file or a directory, and rename, each throwing
 //! IoError naming the path (checkpoints, and the output a restart rebuilds).
 #include <filesystem>
+#include <string>
 
 namespace panoptic {
 
@@ -11,5 +12,10 @@ namespace panoptic {
 void fsync_path(const std::filesystem::path& path, bool directory);
 //! rename(2): atomic replacement of `to` by `from` on the same file system.
 void rename_or_throw(const std::filesystem::path& from, const std::filesystem::path& to);
+//! Throws ConfigError when `output` is the file `input` (by identity: links and other
+//! spellings of the path too): --overwrite would replace what the command reads.
+//! `what` names the input ("the scene", "the run file").
+void refuse_output_is_input(const std::filesystem::path& output,
+                            const std::filesystem::path& input, const std::string& what);
 
 }  // namespace panoptic

@@ -12,6 +12,15 @@ Grid::Grid(double r_in, double r_out, int n, double stretch)
   if (stretch == 0.0) {
     const double h = std::log(r_out / r_in) / n;
     for (int i = 0; i <= n; ++i) r_f_[i] = r_in * std::exp(h * i);
+  } else if (std::abs(stretch * std::log(r_out / r_in)) < 1e-3) {
+    // The same faces written without the cancellation of u1 - u0 (below), which for a
+    // tiny stretch loses all digits (p = 1e-16 gave faces out of order): u_i = u0 (1 +
+    // t expm1(-p L)), t = i/n, L = ln(r_out/r_in), so ln(r_i/r_in) = -log1p(t expm1(-p
+    // L))/p, which tends to t L (log spacing) as p -> 0. Used only here, so that the
+    // faces of larger stretches keep their bits.
+    const double em = std::expm1(-stretch * std::log(r_out / r_in));
+    for (int i = 0; i <= n; ++i)
+      r_f_[i] = r_in * std::exp(-std::log1p(em * i / n) / stretch);
   } else {
     // d ln r = r^p du/(-p) for u = r^-p: faces uniform in u put d ln r ∝ r^p.
     const double u0 = std::pow(r_in, -stretch), u1 = std::pow(r_out, -stretch);

@@ -28,6 +28,7 @@
 #include "src/config.hpp"
 #include "src/cvode_integrator.hpp"
 #include "src/diagnostics.hpp"
+#include "src/durable_file.hpp"
 #include "src/error.hpp"
 #include "src/observe.hpp"
 #include "src/presets.hpp"
@@ -180,11 +181,11 @@ int run(const RunArgs& a) {
       restart ? times_after_restart(sim.output_times(), restart->chk.t)
               : sim.output_times();
   // 5 output: new, or the checkpoint's run's file cut to the checkpoint's snapshots
-  RunOutput out =
-      restart ? continue_output(*restart, a.output, cfg, changed)
-              : new_output(cfg, sim,
-                           a.output.empty() ? default_output(cfg) : fs::path(a.output),
-                           a.overwrite);
+  const fs::path out_path = a.output.empty() ? default_output(cfg) : fs::path(a.output);
+  refuse_output_is_input(out_path, a.scene, "the scene");
+  if (restart) refuse_output_is_input(out_path, restart->path, "the checkpoint");
+  RunOutput out = restart ? continue_output(*restart, a.output, cfg, changed)
+                          : new_output(cfg, sim, out_path, a.overwrite);
   const fs::path chk_path = checkpoint_path(out.path());
   std::printf("panoptic %s: scene %s -> %s\n%s", PANOPTIC_VERSION, a.scene.c_str(),
               out.path().c_str(), sim.summary().c_str());

@@ -12,6 +12,7 @@
 #include "physics/mie.hpp"
 #include "physics/optical_constants.hpp"
 #include "src/config.hpp"
+#include "src/durable_file.hpp"
 #include "src/error.hpp"
 #include "src/h5.hpp"
 #include "src/observe_image.hpp"
@@ -207,6 +208,7 @@ int observe(const ObserveArgs& a) {
       a.output.empty()
           ? fs::path(fs::path(a.run_file).replace_extension("").string() + "_obs.h5")
           : fs::path(a.output);
+  refuse_output_is_input(out_path, a.run_file, "the run file");
   std::error_code ec;
   if (fs::exists(out_path, ec) && !a.overwrite)
     throw IoError(out_path.string() +
@@ -271,9 +273,11 @@ int observe(const ObserveArgs& a) {
   }
 
   // 4 images: pixel from the beam, field = disk + margin; projection; convolution
+  // angles reduced to one turn first: sin and cos of a huge angle lose all precision
   const DiskOrientation orient{a.incl_deg * units::kPi / 180.0,
-                               a.pa_deg * units::kPi / 180.0};
-  const Beam beam{a.bmaj_arcsec, a.bmin_arcsec, a.bpa_deg * units::kPi / 180.0};
+                               std::fmod(a.pa_deg, 360.0) * units::kPi / 180.0};
+  const Beam beam{a.bmaj_arcsec, a.bmin_arcsec,
+                  std::fmod(a.bpa_deg, 360.0) * units::kPi / 180.0};
   const double r_out_arcsec = s.r_f_au.back() / a.distance_pc;
   SkyGrid grid;
   grid.pixel = a.bmin_arcsec / kPixelsPerBeamMinor;

@@ -35,7 +35,7 @@ DiskProjector::DiskProjector(const SkyGrid& grid, const DiskOrientation& o,
           const double x = grid.coord(ix) + ((sx + 0.5) / sub - 0.5) * grid.pixel;
           const double y = grid.coord(iy) + ((sy + 0.5) / sub - 0.5) * grid.pixel;
           const double r = deprojected_radius(x, y, o);
-          if (r < edges.front() || r >= edges.back()) continue;
+          if (!(r >= edges.front() && r < edges.back())) continue;  // NaN too
           const auto it = std::upper_bound(edges.begin(), edges.end(), r);
           ++hits[static_cast<int>(it - edges.begin()) - 1];
         }
@@ -125,8 +125,11 @@ RadialProfile radial_profile(std::span<const double> image, const SkyGrid& grid,
   for (int iy = 0; iy < grid.n; ++iy)
     for (int ix = 0; ix < grid.n; ++ix) {
       const double r = deprojected_radius(grid.coord(ix), grid.coord(iy), o);
-      const int b = static_cast<int>(r / dr);
-      if (b >= nb) continue;
+      // tested as a double before the cast: near edge-on (i -> 90 deg) r / dr overflows
+      // an int (which crashed with --incl-deg 89.999999)
+      const double rb = r / dr;
+      if (!(rb >= 0.0 && rb < nb)) continue;
+      const int b = static_cast<int>(rb);
       sum[b] += image[static_cast<std::size_t>(iy) * grid.n + ix];
       prof.count[b] += 1.0;
     }

@@ -59,6 +59,23 @@ def main():
         c.check(not missing, f"{label}: message names {needles}" + (f" (missing {missing})" if missing else ""))
         c.check(not os.path.exists(out), f"{label}: no output file left behind")
 
+    # the output is the scene: --overwrite must not replace what the run reads
+    scene = os.path.join(args.workdir, "same.toml")
+    with open(scene, "w") as f:
+        f.write(GOOD)
+    link = os.path.join(args.workdir, "same_link.toml")
+    if os.path.lexists(link):
+        os.remove(link)
+    os.symlink(scene, link)
+    for label, out in (("output is the scene", scene), ("output is a link to it", link)):
+        p = subprocess.run([args.exe, "run", scene, "-o", out, "--overwrite",
+                            "--set", "output.t_end_yr=10", "--set", "output.t_first_yr=1"],
+                           capture_output=True, text=True)
+        print(f"[{label}] exit {p.returncode}: {p.stderr.strip()}")
+        c.check(p.returncode == 2 and "the scene" in p.stderr and "-o" in p.stderr,
+                f"{label}: exit code 2, message names it")
+        c.check(open(scene).read() == GOOD, f"{label}: the scene is untouched")
+
     # unwritable output location -> I/O error, exit 4
     p = subprocess.run([args.exe, "run", os.path.join(REPO, "params/fiducial.toml"),
                         "-o", "/proc/panoptic/x.h5"], capture_output=True, text=True)

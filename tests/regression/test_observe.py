@@ -187,6 +187,19 @@ def main():
         ("--set of a bad observe key", ring, base + ["--set", "observe.mix_rule=average"],
          "observe.mix_rule"),
     ]
+    # the output is the run file: --overwrite must not replace what observe reads
+    before = open(ring, "rb").read()
+    p = subprocess.run([exe, "observe", ring, "-o", ring, "--overwrite", *base],
+                       capture_output=True, text=True)
+    c.check(p.returncode == 2 and "the run file" in p.stderr and open(ring, "rb").read()
+            == before, f"output is the run file: exit {p.returncode}, run file untouched")
+    # nearly edge-on, and a position angle of many turns: a radius beyond an int crashed
+    # the radial profile (segfault)
+    for extra in (["--incl-deg", "89.999999"], ["--pa-deg", "1e308"]):
+        out = os.path.join(wd, "extreme_obs.h5")
+        p = subprocess.run([exe, "observe", ring, "-o", out, "--overwrite", *base, *extra],
+                           capture_output=True, text=True)
+        c.check(p.returncode == 0, f"{' '.join(extra)}: exit {p.returncode}")
     for label, run_file, extra, needle in cases:
         out = os.path.join(wd, "bad_obs.h5")
         p = subprocess.run([exe, "observe", run_file, "-o", out, *extra],
