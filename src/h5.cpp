@@ -122,10 +122,18 @@ void quiet_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 Handle create_file(const std::string& path, bool checksummed_metadata) {
   Handle fapl(ok(H5Pcreate(H5P_FILE_ACCESS), "property list"), H5Pclose);
-  if (checksummed_metadata)
-    ok(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
-       "setting the format of", path);
-  return {ok(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()),
+  // Root attributes in dense storage (the 1.8 format at least): compact storage caps an
+  // attribute at 64 KiB, and config_toml (the resolved scene) or a scan's manifest can
+  // be longer (an output_times list of 6 000 times: "creating attribute config_toml
+  // failed", a stub file left behind).
+  ok(H5Pset_libver_bounds(fapl.get(),
+                          checksummed_metadata ? H5F_LIBVER_LATEST : H5F_LIBVER_V18,
+                          H5F_LIBVER_LATEST),
+     "setting the format of", path);
+  Handle fcpl(ok(H5Pcreate(H5P_FILE_CREATE), "property list"), H5Pclose);
+  ok(H5Pset_attr_phase_change(fcpl.get(), 0, 0), "setting the attribute storage of",
+     path);
+  return {ok(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()),
              "creating file " + path),
           H5Fclose};
 }
@@ -407,17 +415,28 @@ void copy_file(const std::string& from, const std::string& to) {
 }
 
 void set_attr(hid_t obj, const std::string& name, const std::string& value) {
-  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
-  Handle type(ok(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
-  H5Tset_size(type.get(), value.empty() ? 1 : value.size());
-  H5Tset_cset(type.get(), H5T_CSET_UTF8);
-  Handle space(ok(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
-  Handle attr(
-      ok(H5Acreate2(obj, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-         "creating attribute " + name),
-      H5Aclose);
-  const std::string v = value.empty() ? std::string(1, '\0') : value;
-  ok(H5Awrite(attr.get(), type.get(), v.data()), "writing attribute", name);
+  // An existing attribute is replaced only once the new one is written (under a
+  // temporary name, then renamed): a failure leaves the old value, not none (a restart
+  // whose longer config_toml could not be written lost the file's config_toml).
+  const bool replace = H5Aexists(obj, name.c_str()) > 0;
+  const std::string target = replace ? name + ".__new" : name;
+  if (replace && H5Aexists(obj, target.c_str()) > 0) H5Adelete(obj, target.c_str());
+  {
+    Handle type(ok(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
+    H5Tset_size(type.get(), value.empty() ? 1 : value.size());
+    H5Tset_cset(type.get(), H5T_CSET_UTF8);
+    Handle space(ok(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
+    Handle attr(ok(H5Acreate2(obj, target.c_str(), type.get(), space.get(), H5P_DEFAULT,
+                              H5P_DEFAULT),
+                   "creating attribute " + name),
+                H5Aclose);
+    const std::string v = value.empty() ? std::string(1, '\0') : value;
+    ok(H5Awrite(attr.get(), type.get(), v.data()), "writing attribute", name);
+  }
+  if (replace) {
+    ok(H5Adelete(obj, name.c_str()), "replacing attribute", name);
+    ok(H5Arename(obj, target.c_str(), name.c_str()), "replacing attribute", name);
+  }
 }
 
 void set_attr(hid_t obj, const std::string& name, double value) {

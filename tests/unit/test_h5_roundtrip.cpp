@@ -109,6 +109,30 @@ TEST(H5RoundTrip, StaticDatasetIsReplacedNotDuplicated) {
   EXPECT_EQ(h5::read_doubles(g.get(), "m"), (std::vector<double>{2.0}));
 }
 
+TEST(H5RoundTrip, RootAttributesBeyond64KiBAreWrittenAndReplaced) {
+  // config_toml holds the resolved scene, which can exceed the 64 KiB that compact
+  // attribute storage allows (6 000 output times: "creating attribute config_toml
+  // failed" and a stub file); a restart replaces it, and a failed replacement must not
+  // leave the file without one. The copy a restart continues keeps it too.
+  const fs::path path = temp_file("big_attr.h5"), copy = temp_file("big_attr_copy.h5");
+  const std::string big(200000, 'x'), bigger(300000, 'y');
+  {
+    RunOutput out(path, false, {"s", big, "", ""});
+    EXPECT_EQ(out.root_attr("config_toml"), big);
+    out.set_root_attr("config_toml", bigger);
+    EXPECT_EQ(out.root_attr("config_toml"), bigger);
+    out.set_root_attr("config_toml", "short");
+    EXPECT_EQ(out.root_attr("config_toml"), "short");
+    out.set_root_attr("config_toml", bigger);
+  }
+  h5::copy_file(path.string(), copy.string());
+  for (const fs::path& p : {path, copy}) {
+    h5::Handle f = h5::open_file(p.string(), false);
+    EXPECT_EQ(h5::get_attr_string(f.get(), "config_toml"), bigger) << p;
+    EXPECT_FALSE(H5Aexists(f.get(), "config_toml.__new") > 0) << p;
+  }
+}
+
 TEST(H5RoundTrip, CopyFileKeepsEveryRowAttributeAndLostChunk) {
   // A restart continues h5::copy_file's copy of its output (run_output.cpp, rebuild):
   // every dataset, every attribute (the root's too) must come across bit for bit, and a
