@@ -289,7 +289,10 @@ T gas_drift_speed(const T& St, const LocalGasT<G>& gas) {
   using std::sqrt;
   const T st2 = St * St;
   const T shape = St * sqrt(4.0 + st2) / (1.0 + st2);
-  return gas.headwind() * shape;
+  // the speed, |eta| v_K: where the pressure rises outward (eta < 0, the inner side of a
+  // pressure maximum, or a surface density rising with r) the particle drifts outward
+  // as fast, and the drag laws and the gas-compaction floor take logs of this speed
+  return std::abs(gas.headwind()) * shape;
 }
 
 //! Log-slope of gas_drift_speed(): d ln(dv_pg) / d ln St =
@@ -389,7 +392,7 @@ T stokes_number_of_radius(const T& a, const T& phi, double rho0, const LocalGasT
   T u = ln_st_ep + log1p_nonneg(xp) / p;  // the Re_p = 0 law
   // Re_p = K shape(St) with K = 2 a eta v_K / nu_mol and shape = St sqrt(4 + St^2) / (1 +
   // St^2) <= min(2 St, 1.12) (gas_drift_speed).
-  const T ln_k = log(2.0 * a * (gas.headwind() / gas.nu_mol));
+  const T ln_k = log(2.0 * a * (std::abs(gas.headwind()) / gas.nu_mol));  // |eta| v_K
   // Re_p < kReNegligible at the Re_p = 0 law (bounded with shape <= 2 St) makes f_Re^p =
   // 1 + Re_p^3.2 + ... equal to 1 to round-off: that law solves G(u) = 0, and St is its
   // value without a Newton step (no pow; most grains before the drift barrier).

@@ -326,6 +326,54 @@ Simulation::Simulation(const Config& cfg)
   model_ = std::make_unique<DiskModel>(layout_, std::move(modules));
   model_->set_describer(
       [this](long index, std::span<const double> y) { return describe_state(index, y); });
+  check_start_is_finite();
+}
+
+void Simulation::check_start_is_finite() const {
+  // Keys inside their ranges can still combine into a disk or an initial state that is
+  // not finite (dust.dust_to_gas = 1e308, star.luminosity_lsun = 1e308, an LBP r_c_au of
+  // 1e-6 au...), which CVODE reported only as a failed first right-hand side, naming no
+  // key. Said here, before any output is written, as bad input.
+  const auto fail = [&](int cell, const std::string& what, double value) {
+    std::ostringstream m;
+    m << what << " = " << value << " at r = " << grid_.r_c(cell) / kAu << " au (cell "
+      << cell
+      << "): the scene's values, each inside its range, give a disk or an initial state "
+         "that is not finite and positive there; bring the disk.*, star.*, dust.* and "
+         "material.* values nearer to physical ones (panoptic check prints the resolved "
+         "scene)";
+    throw ConfigError(m.str());
+  };
+  const auto bad = [](double v) { return !(std::isfinite(v) && v > 0.0); };
+  for (int i = 0; i < grid_.n_cells(); ++i) {
+    const double r = grid_.r_c(i);
+    if (bad(gas_.static_sigma[i])) fail(i, "Sigma_g [g cm^-2]", gas_.static_sigma[i]);
+    if (bad(disk_->temperature(r))) fail(i, "T [K]", disk_->temperature(r));
+    if (!(std::isfinite(sigma_d0_[i]) && sigma_d0_[i] >= 0.0))
+      fail(i, "initial Sigma_d [g cm^-2]", sigma_d0_[i]);
+    if (cell_gas_) {
+      const auto& g = cell_gas_->initial(i);
+      for (const auto& [name, v] : {std::pair{"rho_g [g cm^-3]", g.rho_g},
+                                    {"mean free path [cm]", g.mfp},
+                                    {"nu_mol [cm^2 s^-1]", g.nu_mol},
+                                    {"c_s [cm s^-1]", g.c_s},
+                                    {"H_g [cm]", g.h_g}})
+        if (bad(v)) fail(i, name, v);
+      if (!std::isfinite(g.eta)) fail(i, "eta", g.eta);
+    }
+  }
+  const auto y0 = initial_state();
+  std::vector<double> f(y0.size());
+  model_->rhs(0.0, y0, f);
+  const auto& L = *layout_;
+  for (long k = 0; k < L.size(); ++k)
+    if (!std::isfinite(y0[k]) || !std::isfinite(f[k])) {
+      const int cell = L.cell_of(k);
+      const std::string what = (std::isfinite(y0[k]) ? "d/dt of " : "initial ") +
+                               L.info_of(k).name + " [" + L.info_of(k).units +
+                               (std::isfinite(y0[k]) ? " s^-1]" : "]");
+      fail(cell < 0 ? 0 : cell, what, std::isfinite(y0[k]) ? f[k] : y0[k]);
+    }
 }
 
 std::string Simulation::describe_state(long index, std::span<const double> y) const {

@@ -118,6 +118,9 @@ class Simulation {
   std::string describe_state(long index, std::span<const double> y) const;
 
  private:
+  //! Throws ConfigError when the gas disk, the local gas, the initial state or its
+  //! right-hand side is not finite (and positive where it must be) in some cell.
+  void check_start_is_finite() const;
   Config cfg_;
   Grid grid_;
   std::unique_ptr<GasDisk> disk_;

@@ -35,6 +35,12 @@ CASES = [
     ("bad --set value", None, ["--set", "solver.rtol=-1"], ["solver.rtol", "-1"]),
     ("--set without =", None, ["--set", "solver.rtol"], ["solver.rtol"]),
     ("unknown CLI option", None, ["--frobnicate"], ["frobnicate"]),
+    # keys inside their ranges that combine into a state that is not finite (CVODE said
+    # only that its first right-hand side failed, exit 3)
+    ("non-finite initial dust", None, ["--set", "dust.dust_to_gas=1e308"],
+     ["initial Sigma_d", "inf", "dust.*"]),
+    ("no gas in a cell", None, ["--set", 'disk.model="lbp"', "--set", "disk.r_c_au=1e-6"],
+     ["Sigma_g", "= 0", "disk.*"]),
 ]
 
 

@@ -490,5 +490,24 @@ TEST(SmoothSwitches, SaturatedLogStepEqualsTheLogistic) {
   EXPECT_EQ(log_step(0.0, 1.0, 0.1), 0.0);
 }
 
+// Where the pressure rises outward (eta < 0: inside a pressure maximum, or a surface
+// density rising with r) the particle drifts outward as fast as it drifts inward where
+// eta > 0: every local law depends on |eta|. With the signed eta the drag solve and the
+// gas-compaction floor took logs of a negative speed (NaN: every scene with disk.p <=
+// -1.9 failed at t = 0).
+TEST(DragLaw, OutwardPressureGradientActsThroughItsMagnitude) {
+  LocalGas in = mmsn_gas(1.0), out = in;
+  out.eta = -in.eta;
+  for (double m : {1e-12, 1e-3, 1e3, 1e9, 1e15})
+    for (double phi : {1.0, 1e-3}) {
+      const double st_in = stokes_number(m, phi, 1.0, in),
+                   st_out = stokes_number(m, phi, 1.0, out);
+      ASSERT_TRUE(std::isfinite(st_out)) << m;
+      EXPECT_EQ(st_out, st_in) << "m = " << m << ", phi = " << phi;
+      EXPECT_EQ(gas_drift_speed(st_in, out), gas_drift_speed(st_in, in));
+      EXPECT_GT(gas_drift_speed(st_in, out), 0.0);
+    }
+}
+
 }  // namespace
 }  // namespace panoptic::physics
