@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,13 @@ namespace fs = std::filesystem;
 using namespace panoptic;
 
 namespace {
+
+//! A number as a person writes it (%g), for messages.
+std::string num(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
 
 constexpr int kExitStopped = 75;  // EX_TEMPFAIL: stopped, restart from the checkpoint
 
@@ -372,9 +380,17 @@ int track(const std::string& scene, const std::vector<std::string>& overrides,
           double r0_au, double a_stop_cm, double t_max_yr) {
   const Config cfg = load_scene(scene, overrides);
   validate_scene(cfg);
-  if (!(r0_au > cfg.real("grid.r_in_au")))
-    throw ConfigError("--r0-au " + std::to_string(r0_au) +
-                      ": must be outside the inner edge grid.r_in_au; start further out");
+  if (!(r0_au > cfg.real("grid.r_in_au") && r0_au <= 1e6))
+    throw ConfigError("--r0-au " + num(r0_au) +
+                      ": must be outside the inner edge grid.r_in_au and <= 1e6 [au]; "
+                      "start there");
+  // a time or size of 0, below, NaN or inf ended the track at once with exit 0 (or
+  // failed in CVODE)
+  if (!(t_max_yr >= 1e-6 && t_max_yr <= 1e12))
+    throw ConfigError("--t-max-yr " + num(t_max_yr) +
+                      ": must be >= 1e-6 and <= 1e12 [yr]");
+  if (!(a_stop_cm > 0.0 && std::isfinite(a_stop_cm)))
+    throw ConfigError("--a-stop-cm " + num(a_stop_cm) + ": must be a radius > 0 [cm]");
   const TrackResult res =
       track_particle(cfg, r0_au * units::kAu, a_stop_cm, t_max_yr * units::kYr);
   std::printf("# panoptic track %s: monomer released at %.4g au (%ld CVODE steps)\n",
@@ -575,6 +591,7 @@ int main(int argc, char** argv) {
         obs.bmin_arcsec = b[1];
         obs.bpa_deg = b[2];
       }
+      obs.a_cm_given = obs_cmd->count("--a-cm") > 0;
       return observe(obs);
     }
     if (*ref_cmd) {

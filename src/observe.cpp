@@ -197,8 +197,10 @@ int observe(const ObserveArgs& a) {
     throw ConfigError("--beam-arcsec " + num(a.bmaj_arcsec) + "," + num(a.bmin_arcsec) +
                       "," + num(a.bpa_deg) +
                       ": needs bmaj >= bmin > 0 [arcsec] and a finite PA [deg]");
-  if (a.a_cm < 0.0 || !std::isfinite(a.a_cm))
-    throw ConfigError("--a-cm " + num(a.a_cm) + ": must be > 0 [cm]");
+  // 1 nm to 100 km: below, the Rayleigh-limit opacity overflows (1e-308 gave NaN)
+  if (a.a_cm_given && !(a.a_cm >= 1e-7 && a.a_cm <= 1e7))
+    throw ConfigError("--a-cm " + num(a.a_cm) +
+                      ": must be >= 1e-7 and <= 1e7 [cm] (1 nm to 100 km)");
   for (const std::string& o : a.overrides)
     if (o.rfind("observe.", 0) != 0)
       throw ConfigError("--set " + o +
@@ -236,8 +238,22 @@ int observe(const ObserveArgs& a) {
           " - " + num(mat.ice.lambda_max_mm()) +
           " mm); extend observe.*_lambda_mm/_n/_k with --set");
   }
+  // a snapshot of a run that failed can hold NaN (its last rows): say so, rather than
+  // write an observation of NaN with exit 0
+  for (const auto& [name, v] : {std::pair{"sigma_d", &s.sigma_d},
+                                {"a", &s.a},
+                                {"phi", &s.phi},
+                                {"rho_int", &s.rho_int},
+                                {"T", &s.T}})
+    for (std::size_t i = 0; i < v->size(); ++i)
+      if (!std::isfinite((*v)[i]))
+        throw ConfigError(a.run_file + ": snapshot " + std::to_string(s.index) +
+                          " (t = " + num(s.time_yr) + " yr) has " + name + " = " +
+                          num((*v)[i]) + " at r = " + num(s.r_c_au[i]) +
+                          " au: not a state to observe (did the run fail? its exit code "
+                          "and /solver status say); choose an earlier --time-yr");
   const bool has_size = !s.a.empty();
-  if (!has_size && !(a.a_cm > 0.0))
+  if (!has_size && !(a.a_cm_given))
     throw ConfigError(a.run_file +
                       ": the run has no particle sizes (/snapshots/a: growth was off); "
                       "give one with --a-cm");
@@ -250,9 +266,9 @@ int observe(const ObserveArgs& a) {
   const double mu = std::cos(a.incl_deg * units::kPi / 180.0);
   std::vector<double> a_cm(n), phi(n), rho(n);
   for (std::size_t i = 0; i < n; ++i) {
-    a_cm[i] = a.a_cm > 0.0 ? a.a_cm : s.a[i];
-    phi[i] = a.a_cm > 0.0 || !has_size ? 1.0 : s.phi[i];
-    rho[i] = a.a_cm > 0.0 || !has_size
+    a_cm[i] = a.a_cm_given ? a.a_cm : s.a[i];
+    phi[i] = a.a_cm_given || !has_size ? 1.0 : s.phi[i];
+    rho[i] = a.a_cm_given || !has_size
                  ? cfg.real(inner[i] ? "material.sil_rho0" : "material.ice_rho0")
                  : s.rho_int[i];
   }
@@ -351,6 +367,23 @@ int observe(const ObserveArgs& a) {
       ++np;
     }
 
+  // Every number an option can make non-finite (a beam or a particle far outside the
+  // disk's scales), checked before anything is written.
+  for (const auto& [name, v] : {std::pair{"kappa_abs", &kappa},
+                                {"tau", &tau},
+                                {"intensity", &inten},
+                                {"model image", &img_model},
+                                {"convolved image", &img_conv},
+                                {"model flux", &flux_model},
+                                {"convolved flux", &flux_conv}})
+    for (const double x : *v)
+      if (!std::isfinite(x))
+        throw ConfigError("the observation is not finite (" + std::string(name) + " = " +
+                          num(x) +
+                          "): the options are outside what the model can image; bring "
+                          "--beam-arcsec, --a-cm and --distance-pc nearer to the disk's "
+                          "scales");
+
   // 6 output: written to <out>.tmp, renamed when whole
   if (out_path.has_parent_path()) fs::create_directories(out_path.parent_path(), ec);
   const fs::path tmp = out_path.string() + ".tmp";
@@ -370,7 +403,7 @@ int observe(const ObserveArgs& a) {
     h5::set_attr(root, "beam_pa_deg", a.bpa_deg);
     h5::set_attr(root, "beam_area_arcsec2", beam.area());
     h5::set_attr(root, "particle_size",
-                 a.a_cm > 0.0 ? "--a-cm " + num(a.a_cm) + " in every cell (phi = 1)"
+                 a.a_cm_given ? "--a-cm " + num(a.a_cm) + " in every cell (phi = 1)"
                               : std::string("the run's /snapshots/a, phi, rho_int"));
     h5::set_attr(root, "emission",
                  "absorption only (no scattering): I = B_nu(T) (1 - exp(-tau/cos i)), "

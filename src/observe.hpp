@@ -25,7 +25,8 @@ struct ObserveArgs {
   double distance_pc = 140.0;
   double incl_deg = 0.0, pa_deg = 0.0;
   double bmaj_arcsec = 0.05, bmin_arcsec = 0.05, bpa_deg = 0.0;
-  double a_cm = 0.0;  //!< > 0: this particle radius everywhere (runs without growth)
+  double a_cm = 0.0;        //!< with a_cm_given: this particle radius everywhere [cm]
+  bool a_cm_given = false;  //!< --a-cm was given (replaces the run's sizes)
   std::vector<std::string> overrides;  //!< --set observe.key=value
 };
 

@@ -314,13 +314,15 @@ std::vector<KeySpec> make_keys() {
               "checkpoint at every k-th snapshot (0 = off)", 0, 1e6),
 
       // [output]
-      positive("output.t_end_yr", "1e6", "yr", "end of the run"),
-      positive("output.t_first_yr", "100.0", "yr",
-               "first snapshot after t = 0 (log-spaced snapshots from here to t_end)"),
+      real("output.t_end_yr", "1e6", "yr", "end of the run", 1e-6),
+      real("output.t_first_yr", "100.0", "yr",
+           "first snapshot after t = 0 (log-spaced snapshots from here to t_end)", 1e-6),
       integer("output.n_snapshots", "41",
               "log-spaced snapshots after t = 0 (t_first..t_end)", 1, 1e6),
       real_list("output.times_yr", "yr",
-                "explicit snapshot times; replaces the log spacing when not empty", 0.0),
+                "explicit snapshot times, each >= 1e-6 yr, at least 1e-9 (relative) "
+                "apart; replaces the log spacing when not empty",
+                0.0),
       text("output.file", "output file (default: out/<scene name>.h5; -o overrides)"),
 
       // [observe] `panoptic observe` (README "Synthetic observations"): optical

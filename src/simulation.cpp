@@ -111,17 +111,42 @@ void validate_scene(const Config& cfg) {
                  " [au]; make the inner edge smaller than the outer edge");
   if (r_out / r_in > 1e8)
     cfg.fail("grid.r_out_au", "r_out/r_in must be <= 1e8; narrow the radial domain");
+  // Output times: CVODE cannot step to a time closer to the last one than a few
+  // round-offs (CV_TOO_CLOSE) nor start with a step of 1e-300 yr (CV_ILL_INPUT), so
+  // they must lie >= kMinTime after t = 0 and kMinGap (relative) apart.
+  constexpr double kMinTime = 1e-6, kMinGap = 1e-9;
   const double t_end = cfg.real("output.t_end_yr");
-  if (cfg.real("output.t_first_yr") > t_end)
-    cfg.fail("output.t_first_yr", "must be <= output.t_end_yr = " + num(t_end) +
-                                      " [yr]; lower it or raise t_end_yr");
+  if (t_end < kMinTime)
+    cfg.fail("output.t_end_yr", "must be >= " + num(kMinTime) + " [yr]; raise it");
   const auto& times = cfg.reals("output.times_yr");
+  if (times.empty()) {  // log-spaced from t_first_yr (unused with a list of times)
+    const double t_first = cfg.real("output.t_first_yr");
+    if (t_first > t_end)
+      cfg.fail("output.t_first_yr", "must be <= output.t_end_yr = " + num(t_end) +
+                                        " [yr]; lower it or raise t_end_yr");
+    if (t_first < kMinTime)
+      cfg.fail("output.t_first_yr", "must be >= " + num(kMinTime) + " [yr]; raise it");
+    const long m = cfg.integer("output.n_snapshots");
+    if (m > 1 && t_first < t_end &&
+        std::expm1(std::log(t_end / t_first) / double(m - 1)) < kMinGap)
+      cfg.fail("output.n_snapshots", "puts snapshots less than " + num(kMinGap) +
+                                         " (relative) apart between "
+                                         "t_first_yr = " +
+                                         num(t_first) + " and t_end_yr = " + num(t_end) +
+                                         "; use fewer snapshots or a wider time span");
+  }
   for (std::size_t i = 0; i < times.size(); ++i) {
-    if (times[i] <= 0.0 || times[i] > t_end)
-      cfg.fail("output.times_yr", "every time must be in (0, t_end_yr = " + num(t_end) +
+    if (times[i] < kMinTime || times[i] > t_end)
+      cfg.fail("output.times_yr", "every time must be in [" + num(kMinTime) +
+                                      ", t_end_yr = " + num(t_end) +
                                       "] [yr]; remove or fix the entry " + num(times[i]));
     if (i > 0 && times[i] <= times[i - 1])
       cfg.fail("output.times_yr", "times must be strictly increasing; sort the list");
+    const double next = i + 1 < times.size() ? times[i + 1] : t_end;
+    if (next > times[i] && next - times[i] < kMinGap * next)
+      cfg.fail("output.times_yr", "the times " + num(times[i]) + " and " + num(next) +
+                                      " [yr] (or t_end_yr) are less than " +
+                                      num(kMinGap) + " (relative) apart; merge them");
   }
   if (cfg.flag("porosity.enabled") && !cfg.flag("growth.enabled"))
     cfg.fail(

@@ -41,6 +41,10 @@ CASES = [
      ["initial Sigma_d", "inf", "dust.*"]),
     ("no gas in a cell", None, ["--set", 'disk.model="lbp"', "--set", "disk.r_c_au=1e-6"],
      ["Sigma_g", "= 0", "disk.*"]),
+    # output times the integrator cannot tell apart (CV_TOO_CLOSE, exit 3, before)
+    ("output times too close", None,
+     ["--set", "output.times_yr=[1.0, 1.0000000000000002]", "--set", "output.t_end_yr=2"],
+     ["output.times_yr", "apart", "merge"]),
 ]
 
 
@@ -81,6 +85,13 @@ def main():
         c.check(p.returncode == 2 and "the scene" in p.stderr and "-o" in p.stderr,
                 f"{label}: exit code 2, message names it")
         c.check(open(scene).read() == GOOD, f"{label}: the scene is untouched")
+
+    # track: a time or size that ends the track at once (exit 0 with no track, before)
+    for flag, value in (("--t-max-yr", "0"), ("--t-max-yr", "nan"), ("--a-stop-cm", "-1")):
+        p = subprocess.run([args.exe, "track", os.path.join(REPO, "params/fiducial.toml"),
+                            "--r0-au", "10", flag, value], capture_output=True, text=True)
+        c.check(p.returncode == 2 and flag in p.stderr,
+                f"track {flag} {value}: exit {p.returncode}: {p.stderr.strip()}")
 
     # unwritable output location -> I/O error, exit 4
     p = subprocess.run([args.exe, "run", os.path.join(REPO, "params/fiducial.toml"),
