@@ -120,7 +120,17 @@ std::optional<std::string> nearest(std::string_view word,
 
 // The schema key the user probably meant by `key` ("table.key", or a bare key written
 // outside any table): the same leaf in another table first, then the nearest spelling.
+// A key as a message shows it: whole up to 200 characters, else its start and length.
+std::string shown_key(const std::string& key) {
+  if (key.size() <= 200) return key;
+  return key.substr(0, 80) + "... (a name of " + std::to_string(key.size()) +
+         " characters)";
+}
+
 std::optional<std::string> suggest_key(std::string_view key) {
+  // No key is longer than ~40 characters: a much longer name is no typo of one, and
+  // comparing it with every key cost O(length) each (39 s for a 10 MB key).
+  if (key.size() > 200) return std::nullopt;
   const std::string_view leaf = leaf_of(key);
   for (const KeySpec& spec : scene_keys()) {
     if (leaf_of(spec.key) == leaf) return spec.key;
@@ -513,7 +523,7 @@ class Loader {
     }
     const KeySpec* spec = find_spec(key);
     if (!spec) {
-      add_override(where + ": " + key + " = " + shown + ": unknown key; " +
+      add_override(where + ": " + shown_key(key) + " = " + shown + ": unknown key; " +
                    unknown_key_fix(key));
       return;
     }
@@ -619,9 +629,10 @@ class Loader {
           const std::string what =
               "unknown table; a scene has two levels, [table] and key = value";
           add(node.source().begin,
-              "[" + key + "]: " + what + "; " + unknown_key_fix(key));
+              "[" + shown_key(key) + "]: " + what + "; " + unknown_key_fix(key));
         } else {
-          add(at, key + " = " + written(node) + ": unknown key; " + unknown_key_fix(key));
+          add(at, shown_key(key) + " = " + written(node) + ": unknown key; " +
+                      unknown_key_fix(key));
         }
         continue;
       }
