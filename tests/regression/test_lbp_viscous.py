@@ -1,8 +1,13 @@
 """Viscous gas evolution (spec §1.2, gas.evolve) against the Lynden-Bell & Pringle (1974)
 self-similar solution, gamma = 1, at two resolutions: relative L1 error of Sigma_g over
-0.3-5 r_c (away from the zero-torque inner edge) and its convergence order; the gas mass
-budget (grid + accreted through r_in) closes; and the dust, carried along by v_g, keeps
-its own budget closed."""
+0.3-5 r_c and its convergence order, with the default free-flow inner edge (gas leaves
+through r_in as if the disk went on); the gas mass budget (grid + accreted through r_in)
+closes; and the dust, carried along by v_g, keeps its own budget closed. Then the
+zero-torque inner edge (gas.inner_bc = "zero_torque", nu Sigma_g r^1/2 = 0 at r_in): where
+the inner disk has reached its steady state (r << r_c) the steady thin-disk solution with
+zero torque at r_in gives Sigma = Mdot/(3 pi nu) (1 - sqrt(r_in/r)), so the ratio of the
+zero-torque run to the free-flow run must follow 1 - sqrt(r_in/r) up to a constant (the
+ratio of the two disks' accretion rates)."""
 import numpy as np
 
 from common import Checks, load_run, parse_args, run
@@ -55,6 +60,26 @@ def main():
     c.check(min(orders) > 1.5, "converges at second order (> 1.5)")
     c.check(max(res[n][2] for n in res) < 1e-12, "gas budget closes to 1e-12")
     c.check(max(res[n][3] for n in res) < 1e-12, "dust budget closes to 1e-12")
+
+    zt = f"{args.workdir}/lbp_200_zero_torque.h5"
+    run(args.exe, "params/tests/lbp_viscous.toml", zt,
+        ["grid.n_cells=200", 'gas.inner_bc="zero_torque"'])
+    a, b = load_run(f"{args.workdir}/lbp_200.h5"), load_run(zt)
+    sel = (a.r_c > 0.02) & (a.r_c < 0.3)  # au: 2-30 r_in, viscous time << 1e5 yr
+    ratio = b.snapshots["sigma_g"][-1][sel] / a.snapshots["sigma_g"][-1][sel]
+    shape = ratio / (1.0 - np.sqrt(a.r_f[0] / a.r_c[sel]))
+    spread = shape.max() / shape.min() - 1.0
+    m_gas = np.sum(b.snapshots["sigma_g"] * b.area, axis=1) + b.snapshots["m_out_gas"]
+    print(f"zero torque: Sigma ratio / (1 - sqrt(r_in/r)) over 0.02-0.3 au = "
+          f"{shape.min():.4f} .. {shape.max():.4f} (the accretion-rate ratio; spread "
+          f"{spread:.1e}); free flow in its place would give 1/(1 - sqrt(r_in/r)) = "
+          f"{1 / (1 - np.sqrt(a.r_f[0] / 0.02)):.2f} at 0.02 au")
+    c.check(spread < 5e-3, f"zero torque: the inner profile is the steady zero-torque "
+            f"shape 1 - sqrt(r_in/r) to {spread:.1e} (5e-3 asserted)")
+    c.check(abs(np.median(shape) - 1.0) < 0.03,
+            f"zero torque: accretion rate within 3 % of the free-flow disk's "
+            f"({np.median(shape):.4f})")
+    c.check(np.max(np.abs(m_gas / m_gas[0] - 1)) < 1e-12, "zero torque: gas budget closes")
     c.finish()
 
 
