@@ -14,6 +14,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <sstream>
@@ -283,8 +284,21 @@ std::string range_problem(const KeySpec& spec, double x) {
 std::optional<ConfigValue> convert(const KeySpec& spec, const toml::node& node,
                                    std::string& problem) {
   const auto type_problem = [&](std::string extra = "") {
-    problem = "must be " + type_text(spec.type) + unit_suffix(spec) + ", not " +
-              node_type_text(node) + "; " + (extra.empty() ? fix_text(spec) : extra);
+    std::string what = node_type_text(node);
+    // a --set value that reads as a number only beyond the range of a double or of a
+    // 64-bit integer (1e999, 99999999999999999999) arrives as a string
+    if (const auto* str = node.as_string()) {
+      const std::string& t = str->get();
+      char* end = nullptr;
+      errno = 0;
+      (void)std::strtod(t.c_str(), &end);
+      if (!t.empty() && end == t.c_str() + t.size() && errno == ERANGE)
+        what = "a number beyond the range of a double";
+      else if (!t.empty() && end == t.c_str() + t.size() && spec.type == KeyType::kInt)
+        what = "a number beyond the range of a 64-bit integer";
+    }
+    problem = "must be " + type_text(spec.type) + unit_suffix(spec) + ", not " + what +
+              "; " + (extra.empty() ? fix_text(spec) : extra);
     return std::nullopt;
   };
   const auto number = [](const toml::node& n) -> std::optional<double> {

@@ -630,5 +630,15 @@ TEST(TomlGuard, OtherExceptionInTheChildIsAConfigError) {
   }
 }
 
+TEST(Config, SetValueBeyondTheNumberRangeSaysSo) {
+  // a --set value that is a number too large for a double or a 64-bit integer arrives as
+  // a string; "not a string" sent the user looking for quotes
+  expect_parts(error_of("", {"star.mass_msun=1e999"}),
+               {"star.mass_msun", "1e999", "beyond the range of a double", "> 0"});
+  expect_parts(error_of("", {"grid.n_cells=99999999999999999999"}),
+               {"grid.n_cells", "beyond the range of a 64-bit integer", "<= 1000000"});
+  expect_parts(error_of("", {"grid.n_cells=abc"}), {"grid.n_cells", "not a string"});
+}
+
 }  // namespace
 }  // namespace panoptic
