@@ -29,8 +29,11 @@ OpticalTable::OpticalTable(std::string name, std::vector<double> lambda_mm,
     if (!(lambda_mm_[i] > 0.0)) fail("wavelengths must be > 0");
     if (i > 0 && !(lambda_mm_[i] > lambda_mm_[i - 1]))
       fail("wavelengths must increase strictly");
-    if (!(n_[i] > 0.0)) fail("n must be > 0");
-    if (!(k_[i] > 0.0)) fail("k must be > 0 (log interpolation; use 1e-12 for none)");
+    // natural materials have n and k of order 1-10 (metals at mm wavelengths ~1e3);
+    // 1e100 overflowed the Mie series (an internal error, exit 1)
+    if (!(n_[i] > 0.0 && n_[i] <= 1e4)) fail("n must be > 0 and <= 1e4");
+    if (!(k_[i] > 0.0 && k_[i] <= 1e4))
+      fail("k must be > 0 (log interpolation; use 1e-12 for none) and <= 1e4");
   }
 }
 

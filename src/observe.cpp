@@ -11,6 +11,7 @@
 #include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
 #include "physics/mie.hpp"
 #include "physics/optical_constants.hpp"
+#include "src/checkpoint.hpp"
 #include "src/config.hpp"
 #include "src/durable_file.hpp"
 #include "src/error.hpp"
@@ -211,6 +212,15 @@ int observe(const ObserveArgs& a) {
           ? fs::path(fs::path(a.run_file).replace_extension("").string() + "_obs.h5")
           : fs::path(a.output);
   refuse_output_is_input(out_path, a.run_file, "the run file");
+  {  // nor the run's checkpoints next to it
+    const fs::path chk = checkpoint_path(a.run_file);
+    for (const fs::path& c : {chk, previous_checkpoint_path(chk)}) {
+      std::error_code eq;
+      if (fs::equivalent(out_path, c, eq) && !eq)
+        throw ConfigError("-o " + out_path.string() + ": this is the checkpoint of " +
+                          a.run_file + "; choose another output file with -o");
+    }
+  }
   std::error_code ec;
   if (fs::exists(out_path, ec) && !a.overwrite)
     throw IoError(out_path.string() +
@@ -251,7 +261,7 @@ int observe(const ObserveArgs& a) {
                           " (t = " + num(s.time_yr) + " yr) has " + name + " = " +
                           num((*v)[i]) + " at r = " + num(s.r_c_au[i]) +
                           " au: not a state to observe (did the run fail? its exit code "
-                          "and /solver status say); choose an earlier --time-yr");
+                          "and /solver status say); choose another --time-yr");
   const bool has_size = !s.a.empty();
   if (!has_size && !(a.a_cm_given))
     throw ConfigError(a.run_file +
@@ -307,6 +317,18 @@ int observe(const ObserveArgs& a) {
                       " arcsec); the limit is " + std::to_string(kMaxImageSide) +
                       ": use a larger beam or a larger --distance-pc");
   grid.n = static_cast<int>(n_side);
+  // Nearly edge-on the projected disk is thinner than the pixels that sample it: the
+  // image then misses it at some position angles (flux exactly 0 at i = 89.999999 deg,
+  // PA 30). Require the projected minor axis to span a few pixels.
+  const double minor_px = 2.0 * r_out_arcsec * mu / grid.pixel;
+  if (minor_px < kMinMinorAxisPixels)
+    throw ConfigError("--incl-deg " + num(a.incl_deg) +
+                      ": the disk's projected minor "
+                      "axis would be " +
+                      num(minor_px) + " pixels (" + num(grid.pixel) +
+                      " arcsec each, from the beam), fewer than " +
+                      num(kMinMinorAxisPixels) +
+                      " to sample it; use a smaller inclination or a smaller beam");
   std::vector<double> edges_arcsec(n + 1);
   for (std::size_t i = 0; i <= n; ++i) edges_arcsec[i] = s.r_f_au[i] / a.distance_pc;
   const DiskProjector projector(grid, orient, edges_arcsec, kSubsamples);

@@ -48,5 +48,8 @@ inline constexpr int kSubsamples = 5;
 inline constexpr double kFieldMarginBeams = 4.0;
 //! Largest image side [pixels] (memory: 8 bytes x 2 images x n^2 per wavelength).
 inline constexpr int kMaxImageSide = 4097;
+//! Fewest pixels across the projected minor axis of the disk (2 r_out cos i / d): below,
+//! nearly edge-on, the pixels miss the disk at some position angles.
+inline constexpr double kMinMinorAxisPixels = 5.0;
 
 }  // namespace panoptic

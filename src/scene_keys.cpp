@@ -286,14 +286,14 @@ std::vector<KeySpec> make_keys() {
       // [solver] CVODE BDF + KLU
       real("solver.rtol", "1e-6", "", "CVODE relative tolerance", 1e-14, false, 0.1,
            false),
-      positive(
-          "solver.atol_sigma", "1e-8", "",
-          "absolute tolerance of Sigma_d and Sigma_g, relative to the initial maximum "
-          "of Sigma (so it scales with the scene)"),
+      real("solver.atol_sigma", "1e-8", "",
+           "absolute tolerance of Sigma_d and Sigma_g, relative to the initial maximum "
+           "of Sigma (so it scales with the scene)",
+           1e-30, false, 1.0, false),
       integer("solver.max_steps", "2000000", "limit on the total number of CVODE steps",
               1, 1e12),
-      real("solver.max_dt_yr", "0.0", "yr", "largest CVODE step (0 = unlimited)", 0.0,
-           false),
+      real("solver.max_dt_yr", "0.0", "yr",
+           "largest CVODE step (0 = unlimited; else >= 1e-6 yr)", 0.0, false),
       real(
           "solver.newton_coef", "0.03", "",
           "CVODE's nonlinear convergence coefficient (CVodeSetNonlinConvCoef): Newton "

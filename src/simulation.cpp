@@ -111,6 +111,11 @@ void validate_scene(const Config& cfg) {
                  " [au]; make the inner edge smaller than the outer edge");
   if (r_out / r_in > 1e8)
     cfg.fail("grid.r_out_au", "r_out/r_in must be <= 1e8; narrow the radial domain");
+  const double max_dt = cfg.real("solver.max_dt_yr");
+  if (max_dt > 0.0 && max_dt < 1e-6)
+    cfg.fail("solver.max_dt_yr",
+             "must be 0 (unlimited) or >= 1e-6 [yr] (a step of 1e-320 yr is not one); "
+             "raise it");
   // Output times: CVODE cannot step to a time closer to the last one than a few
   // round-offs (CV_TOO_CLOSE) nor start with a step of 1e-300 yr (CV_ILL_INPUT), so
   // they must lie >= kMinTime after t = 0 and kMinGap (relative) apart.
@@ -364,9 +369,10 @@ void Simulation::check_start_is_finite() const {
     m << what << " = " << value << " at r = " << grid_.r_c(cell) / kAu << " au (cell "
       << cell
       << "): the scene's values, each inside its range, give a disk or an initial state "
-         "that is not finite and positive there; bring the disk.*, star.*, dust.* and "
-         "material.* values nearer to physical ones (panoptic check prints the resolved "
-         "scene)";
+         "that is not finite and positive there; bring the disk.*, star.*, dust.*, "
+         "material.* and grid.* values nearer to physical ones (a grid reaching far "
+         "beyond an LBP disk's r_c_au has no gas there; panoptic check prints the "
+         "resolved scene)";
     throw ConfigError(m.str());
   };
   const auto bad = [](double v) { return !(std::isfinite(v) && v > 0.0); };

@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <memory>
+#include <sstream>
 
 #include "disk/gas_disk.hpp"
 #include "physics/growth_rates.hpp"
 #include "physics/local_gas.hpp"
 #include "src/cvode_integrator.hpp"
+#include "src/error.hpp"
 #include "src/simulation.hpp"
 #include "src/units.hpp"
 
@@ -120,6 +122,13 @@ TrackResult track_particle(const Config& cfg, double r0, double a_stop, double t
 
   TrackResult out;
   out.points.push_back(track.point(0.0, y0));
+  if (!(out.points.front().a < a_stop)) {  // it ended at once, at a negative time
+    std::ostringstream m;
+    m << "--a-stop-cm " << a_stop
+      << ": the released monomer is already a = " << out.points.front().a
+      << " cm; give a larger stop size";
+    throw ConfigError(m.str());
+  }
   const double r_in = cfg.real("grid.r_in_au") * units::kAu;
   try {
     cvode.advance_to(t_max, [&](double t, long) {

@@ -193,13 +193,16 @@ def main():
                        capture_output=True, text=True)
     c.check(p.returncode == 2 and "the run file" in p.stderr and open(ring, "rb").read()
             == before, f"output is the run file: exit {p.returncode}, run file untouched")
-    # nearly edge-on, and a position angle of many turns: a radius beyond an int crashed
-    # the radial profile (segfault)
-    for extra in (["--incl-deg", "89.999999"], ["--pa-deg", "1e308"]):
+    # a position angle of many turns, and nearly edge-on: a radius beyond an int crashed
+    # the radial profile (segfault); nearly edge-on the pixels missed the disk (flux 0 at
+    # PA 30), so such an inclination is refused, naming the option
+    for extra, code in ((["--pa-deg", "1e308"], 0), (["--incl-deg", "89.999999"], 2),
+                        (["--incl-deg", "89.999999", "--pa-deg", "30"], 2)):
         out = os.path.join(wd, "extreme_obs.h5")
         p = subprocess.run([exe, "observe", ring, "-o", out, "--overwrite", *base, *extra],
                            capture_output=True, text=True)
-        c.check(p.returncode == 0, f"{' '.join(extra)}: exit {p.returncode}")
+        c.check(p.returncode == code and (code == 0 or "--incl-deg" in p.stderr),
+                f"{' '.join(extra)}: exit {p.returncode} (expected {code})")
     for label, run_file, extra, needle in cases:
         out = os.path.join(wd, "bad_obs.h5")
         p = subprocess.run([exe, "observe", run_file, "-o", out, *extra],
