@@ -320,8 +320,10 @@ int observe(const ObserveArgs& a) {
   // Nearly edge-on the projected disk is thinner than the pixels that sample it: the
   // image then misses it at some position angles (flux exactly 0 at i = 89.999999 deg,
   // PA 30). Require the projected minor axis to span a few pixels.
-  const double minor_px = 2.0 * r_out_arcsec * mu / grid.pixel;
-  if (minor_px < kMinMinorAxisPixels)
+  // (Only where the inclination thins it: a disk smaller than the beam's pixels is
+  // observed face-on or inclined alike.)
+  const double major_px = 2.0 * r_out_arcsec / grid.pixel, minor_px = major_px * mu;
+  if (minor_px < std::min(kMinMinorAxisPixels, 0.5 * major_px))
     throw ConfigError("--incl-deg " + num(a.incl_deg) +
                       ": the disk's projected minor "
                       "axis would be " +

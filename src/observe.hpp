@@ -48,8 +48,10 @@ inline constexpr int kSubsamples = 5;
 inline constexpr double kFieldMarginBeams = 4.0;
 //! Largest image side [pixels] (memory: 8 bytes x 2 images x n^2 per wavelength).
 inline constexpr int kMaxImageSide = 4097;
-//! Fewest pixels across the projected minor axis of the disk (2 r_out cos i / d): below,
-//! nearly edge-on, the pixels miss the disk at some position angles.
-inline constexpr double kMinMinorAxisPixels = 5.0;
+//! Fewest pixels across the projected minor axis of the disk (2 r_out cos i / d; or half
+//! the major axis for a disk smaller than that): below, nearly edge-on, the pixels miss
+//! the disk at some position angles (from i ~ 89.7 deg for the fiducial disk at 140 pc
+//! and the default beam).
+inline constexpr double kMinMinorAxisPixels = 3.0;
 
 }  // namespace panoptic
