@@ -341,6 +341,14 @@ int observe(const ObserveArgs& a) {
       radial_profile(std::vector<double>(npix, 0.0), grid, orient, dr, r_out_arcsec);
   const std::size_t nb = geometry.r_mid.size();
   std::vector<double> img_model(nl * npix), img_conv(nl * npix);
+  // The flux summed over the cells' projected annuli, I_i mu pi (r_o^2 - r_i^2) / d^2
+  // [arcsec^2]: independent of the pixels, the check of the image-summed fluxes.
+  std::vector<double> flux_annuli(nl, 0.0);
+  for (std::size_t l = 0; l < nl; ++l)
+    for (std::size_t i = 0; i < n; ++i)
+      flux_annuli[l] +=
+          inten[l * n + i] * mu * units::kPi *
+          (edges_arcsec[i + 1] * edges_arcsec[i + 1] - edges_arcsec[i] * edges_arcsec[i]);
   std::vector<double> prof_conv(nl * nb), prof_model(nl * nb), flux_model(nl),
       flux_conv(nl);
   const double pix2 = grid.pixel * grid.pixel;
@@ -399,6 +407,7 @@ int observe(const ObserveArgs& a) {
                                 {"model image", &img_model},
                                 {"convolved image", &img_conv},
                                 {"model flux", &flux_model},
+                                {"annuli flux", &flux_annuli},
                                 {"convolved flux", &flux_conv}})
     for (const double x : *v)
       if (!std::isfinite(x))
@@ -509,6 +518,9 @@ int observe(const ObserveArgs& a) {
                   "total flux of the model image");
       write_array(g.get(), "convolved", {hl}, flux_conv, "Jy",
                   "total flux of the convolved image (sum x pixel area / beam area)");
+      write_array(g.get(), "annuli", {hl}, flux_annuli, "Jy",
+                  "total flux summed over the cells' projected annuli (independent of "
+                  "the pixels: the check of model and convolved)");
     }
     {
       h5::Handle g = h5::create_group(root, "spectral_index");
@@ -540,10 +552,21 @@ int observe(const ObserveArgs& a) {
       "%d x %d pixels of %.4g arcsec (FFT %d^2)\n",
       a.distance_pc, a.incl_deg, a.pa_deg, a.bmaj_arcsec, a.bmin_arcsec, a.bpa_deg,
       grid.n, grid.n, grid.pixel, convolver.padded_size());
-  for (std::size_t l = 0; l < nl; ++l)
-    std::printf("  %6.3g mm: flux %.6g Jy (after the beam %.6g Jy), max tau %.3g\n",
-                a.lambda_mm[l], flux_model[l], flux_conv[l],
-                *std::max_element(tau.begin() + l * n, tau.begin() + (l + 1) * n));
+  for (std::size_t l = 0; l < nl; ++l) {
+    std::printf(
+        "  %6.3g mm: flux %.6g Jy (after the beam %.6g Jy; over the annuli %.6g Jy), max "
+        "tau %.3g\n",
+        a.lambda_mm[l], flux_model[l], flux_conv[l], flux_annuli[l],
+        *std::max_element(tau.begin() + l * n, tau.begin() + (l + 1) * n));
+    if (std::abs(flux_model[l] / flux_annuli[l] - 1.0) > kFluxSamplingTolerance)
+      std::fprintf(stderr,
+                   "panoptic: warning: at %g mm the image's flux is %.1f %% off the flux "
+                   "over the annuli: its pixels (%.4g arcsec) undersample the disk's "
+                   "bright rings; a smaller beam samples them finer (README, Synthetic "
+                   "observations)\n",
+                   a.lambda_mm[l], 100.0 * (flux_model[l] / flux_annuli[l] - 1.0),
+                   grid.pixel);
+  }
   for (std::size_t p = 0; p < np; ++p)
     std::printf("  alpha(%g-%g mm) of the total flux: %.4g\n", pairs[2 * p],
                 pairs[2 * p + 1], alpha_total[p]);

@@ -53,5 +53,8 @@ inline constexpr int kMaxImageSide = 4097;
 //! the disk at some position angles (from i ~ 89.7 deg for the fiducial disk at 140 pc
 //! and the default beam).
 inline constexpr double kMinMinorAxisPixels = 3.0;
+//! Largest relative difference between the image-summed flux and the flux over the
+//! annuli before observe warns that its pixels undersample the disk.
+inline constexpr double kFluxSamplingTolerance = 0.05;
 
 }  // namespace panoptic

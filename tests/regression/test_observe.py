@@ -79,6 +79,13 @@ def main():
             c.check(np.all(np.abs(fc / fm - 1) < 1e-10),
                     f"i = {incl:g}: beam conserves the flux: max |Fc/Fm - 1| = "
                     f"{np.max(np.abs(fc / fm - 1)):.1e}")
+            # the image's flux against the sum over the projected annuli, which no pixel
+            # enters: the projection's 5 x 5 subsamples per pixel resolve the ring's
+            # profile (measured 8.4e-4 face-on, 2.4e-4 at i = 60)
+            fa = f["flux/annuli"][()]
+            c.check(np.all(np.abs(fm / fa - 1) < 5e-3),
+                    f"i = {incl:g}: image flux = flux over the annuli to "
+                    f"{np.max(np.abs(fm / fa - 1)):.1e} (5e-3 asserted)")
             c.check(f.attrs["snapshot_index"] == 1 and f.attrs["time_yr"] == 10.0,
                     "the snapshot at 10 yr is used")
             units = {"image/convolved": "Jy beam^-1", "image/model": "Jy arcsec^-2",
