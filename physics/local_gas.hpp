@@ -47,6 +47,29 @@ struct LocalGasT {
 //! The gas of the right-hand side, of static gas, and of output.
 using LocalGas = LocalGasT<double>;
 
+//! `g` with a gas surface density `ratio` times its own (spec §1.3, §1.6: rho_g ∝
+//! Sigma_g; lambda and nu_mol ∝ 1/Sigma_g); the temperature, the pressure gradient (eta)
+//! and the rest are kept. G = AD carries the derivatives of the ratio (a Jacobian by an
+//! evolving Sigma_g).
+template <class G>
+LocalGasT<G> with_density_ratio(const LocalGas& g, const G& ratio) {
+  LocalGasT<G> out;
+  out.sigma_g = g.sigma_g * ratio;
+  out.rho_g = g.rho_g * ratio;
+  out.temperature = g.temperature;
+  out.c_s = g.c_s;
+  out.v_th = g.v_th;
+  out.omega_k = g.omega_k;
+  out.v_k = g.v_k;
+  out.h_g = g.h_g;
+  out.mfp = g.mfp / ratio;
+  out.nu_mol = g.nu_mol / ratio;
+  out.alpha = g.alpha;
+  out.eta = g.eta;
+  out.v_r_gas = g.v_r_gas;
+  return out;
+}
+
 //! Builds a LocalGas from the basic quantities of one cell.
 //! sigma_g [g cm^-2], temperature [K], r [cm], m_star [g], alpha [-], dlnp_dlnr: midplane
 //! d ln P / d ln r at r [-] (-3.25 for the MMSN; computed numerically by the engine for

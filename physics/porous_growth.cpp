@@ -87,36 +87,9 @@ template AD ParticleCodec::mass<AD>(int, const AD*) const;
 template AD ParticleCodec::phi<AD>(const AD*) const;
 
 physics::LocalGasT<AD> CellGas::at_ad(int cell, const AD* yc) const {
-  // as scaled(), with the ratio carrying the derivatives of Sigma_g
-  const LocalGas& g0 = initial_[cell];
-  physics::LocalGasT<AD> g;
-  g.temperature = g0.temperature;
-  g.c_s = g0.c_s;
-  g.v_th = g0.v_th;
-  g.omega_k = g0.omega_k;
-  g.v_k = g0.v_k;
-  g.h_g = g0.h_g;
-  g.alpha = g0.alpha;
-  g.eta = g0.eta;
-  g.v_r_gas = g0.v_r_gas;
-  const AD ratio = yc[gas_.slot] / g0.sigma_g;
-  g.sigma_g = g0.sigma_g * ratio;
-  g.rho_g = g0.rho_g * ratio;
-  g.mfp = g0.mfp / ratio;
-  g.nu_mol = g0.nu_mol / ratio;
-  return g;
-}
-
-LocalGas CellGas::scaled(int cell, double sigma_g) const {
-  // Density-dependent quantities follow the evolving Sigma_g (spec §1.3, §1.6); the
-  // pressure gradient (eta) stays that of the initial gas.
-  LocalGas g = initial_[cell];
-  const double ratio = sigma_g / g.sigma_g;
-  g.sigma_g *= ratio;
-  g.rho_g *= ratio;
-  g.mfp /= ratio;
-  g.nu_mol /= ratio;
-  return g;
+  // as at(), with the ratio carrying the derivatives of Sigma_g
+  return physics::with_density_ratio(initial_[cell],
+                                     AD(yc[gas_.slot] / initial_[cell].sigma_g));
 }
 
 const GrowthStokes::Particle& GrowthStokes::particle(int cell, const double* yc) const {

@@ -53,7 +53,10 @@ class CellGas {
   template <class T>
   physics::LocalGas at(int cell, const T* yc) const {
     if (!gas_.evolves()) return initial_[cell];
-    return scaled(cell, value_of(yc[gas_.slot]));
+    // Density-dependent quantities follow the evolving Sigma_g (spec §1.3, §1.6); the
+    // pressure gradient (eta) stays that of the initial gas.
+    return physics::with_density_ratio(initial_[cell],
+                                       value_of(yc[gas_.slot]) / initial_[cell].sigma_g);
   }
   //! The same with the density-dependent quantities as functions of Sigma_g (AD), for
   //! Jacobians of cells whose gas evolves (call only then).
@@ -63,7 +66,6 @@ class CellGas {
   int evolves_slot() const { return gas_.slot; }
 
  private:
-  physics::LocalGas scaled(int cell, double sigma_g) const;
   std::vector<physics::LocalGas> initial_;
   const GasColumn& gas_;
 };

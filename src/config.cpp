@@ -119,19 +119,23 @@ std::optional<std::string> nearest(std::string_view word,
   return std::nullopt;
 }
 
-// The schema key the user probably meant by `key` ("table.key", or a bare key written
-// outside any table): the same leaf in another table first, then the nearest spelling.
-// A key as a message shows it: whole up to 200 characters, else its start and length.
+// No scene key is longer than ~40 characters: a name longer than this is no typo of one
+// (comparing it with every key cost O(length) each: 39 s for a 10 MB key), and a message
+// shows only its start.
+constexpr std::size_t kLongestPlausibleKey = 200;
+
+// A key as a message shows it: whole up to kLongestPlausibleKey characters, else its
+// start and length.
 std::string shown_key(const std::string& key) {
-  if (key.size() <= 200) return key;
+  if (key.size() <= kLongestPlausibleKey) return key;
   return key.substr(0, 80) + "... (a name of " + std::to_string(key.size()) +
          " characters)";
 }
 
+// The schema key the user probably meant by `key` ("table.key", or a bare key written
+// outside any table): the same leaf in another table first, then the nearest spelling.
 std::optional<std::string> suggest_key(std::string_view key) {
-  // No key is longer than ~40 characters: a much longer name is no typo of one, and
-  // comparing it with every key cost O(length) each (39 s for a 10 MB key).
-  if (key.size() > 200) return std::nullopt;
+  if (key.size() > kLongestPlausibleKey) return std::nullopt;
   const std::string_view leaf = leaf_of(key);
   for (const KeySpec& spec : scene_keys()) {
     if (leaf_of(spec.key) == leaf) return spec.key;

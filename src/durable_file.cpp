@@ -38,8 +38,8 @@ void refuse_output_is_input(const std::filesystem::path& output,
   if (std::filesystem::equivalent(output, input, ec) && !ec)
     throw ConfigError("-o " + output.string() + ": this is " + what + " (" +
                       input.string() +
-                      ") the command reads; --overwrite would replace it: choose another "
-                      "output file with -o");
+                      "); --overwrite would replace it: choose another output file with "
+                      "-o");
 }
 
 }  // namespace panoptic

@@ -14,7 +14,7 @@ void fsync_path(const std::filesystem::path& path, bool directory);
 void rename_or_throw(const std::filesystem::path& from, const std::filesystem::path& to);
 //! Throws ConfigError when `output` is the file `input` (by identity: links and other
 //! spellings of the path too): --overwrite would replace what the command reads.
-//! `what` names the input ("the scene", "the run file").
+//! `what` names it ("the scene the run reads", "the run's checkpoint").
 void refuse_output_is_input(const std::filesystem::path& output,
                             const std::filesystem::path& input, const std::string& what);
 

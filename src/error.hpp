@@ -1,10 +1,18 @@
 #pragma once
 //! The error hierarchy of panoptic. main() maps each class to an exit code:
 //! ConfigError -> 2 (bad input), SolverError -> 3, IoError -> 4.
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace panoptic {
+
+//! A number as a person writes it (%g: 6 significant digits), for error messages.
+inline std::string num(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
 
 class Error : public std::runtime_error {
  public:

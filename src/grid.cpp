@@ -9,18 +9,19 @@ namespace panoptic {
 
 Grid::Grid(double r_in, double r_out, int n, double stretch)
     : n_(n), stretch_(stretch), r_c_(n), r_f_(n + 1), area_(n), dlnr_(n) {
+  const double L = std::log(r_out / r_in);
   // A stretch this small shifts no face by more than a round-off (|p| L^2/8 < 1e-12 in
   // ln r): the log grid, exactly (a subnormal p lost the expm1 form's precision).
-  if (std::abs(stretch) * std::log(r_out / r_in) * std::log(r_out / r_in) < 1e-12) {
-    const double h = std::log(r_out / r_in) / n;
+  if (std::abs(stretch) * L * L < 1e-12) {
+    const double h = L / n;
     for (int i = 0; i <= n; ++i) r_f_[i] = r_in * std::exp(h * i);
-  } else if (std::abs(stretch * std::log(r_out / r_in)) < 1e-3) {
+  } else if (std::abs(stretch * L) < 1e-3) {
     // The same faces written without the cancellation of u1 - u0 (below), which for a
     // tiny stretch loses all digits (p = 1e-16 gave faces out of order): u_i = u0 (1 +
     // t expm1(-p L)), t = i/n, L = ln(r_out/r_in), so ln(r_i/r_in) = -log1p(t expm1(-p
     // L))/p, which tends to t L (log spacing) as p -> 0. Used only here, so that the
     // faces of larger stretches keep their bits.
-    const double em = std::expm1(-stretch * std::log(r_out / r_in));
+    const double em = std::expm1(-stretch * L);
     for (int i = 0; i <= n; ++i)
       r_f_[i] = r_in * std::exp(-std::log1p(em * i / n) / stretch);
   } else {

@@ -20,7 +20,6 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -43,13 +42,6 @@ namespace fs = std::filesystem;
 using namespace panoptic;
 
 namespace {
-
-//! A number as a person writes it (%g), for messages.
-std::string num(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
 
 constexpr int kExitStopped = 75;  // EX_TEMPFAIL: stopped, restart from the checkpoint
 
@@ -158,9 +150,10 @@ void print_budget(const Simulation& sim, std::span<const double> y) {
     terms += buf;
     total += masses[k];
   }
+  const double m0 = sim.initial_dust_mass();  // the error as Simulation::budget_error
   std::printf("dust budget [M_earth]: %s = %.6g; initial %.6g; relative error %.2e\n",
-              terms.c_str(), total / units::kMearth,
-              sim.initial_dust_mass() / units::kMearth, sim.budget_error(y));
+              terms.c_str(), total / units::kMearth, m0 / units::kMearth,
+              std::abs(total - m0) / m0);
 }
 
 int run(const RunArgs& a) {
@@ -190,8 +183,9 @@ int run(const RunArgs& a) {
               : sim.output_times();
   // 5 output: new, or the checkpoint's run's file cut to the checkpoint's snapshots
   const fs::path out_path = a.output.empty() ? default_output(cfg) : fs::path(a.output);
-  refuse_output_is_input(out_path, a.scene, "the scene");
-  if (restart) refuse_output_is_input(out_path, restart->path, "the checkpoint");
+  refuse_output_is_input(out_path, a.scene, "the scene the run reads");
+  if (restart)
+    refuse_output_is_input(out_path, restart->path, "the checkpoint it restarts from");
   RunOutput out = restart ? continue_output(*restart, a.output, cfg, changed)
                           : new_output(cfg, sim, out_path, a.overwrite);
   const fs::path chk_path = checkpoint_path(out.path());

@@ -26,13 +26,6 @@ namespace {
 
 using cplx = std::complex<double>;
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
 //! What `observe` needs of one snapshot of a run file.
 struct Snapshot {
   std::string config_toml, run_id;
@@ -211,16 +204,10 @@ int observe(const ObserveArgs& a) {
       a.output.empty()
           ? fs::path(fs::path(a.run_file).replace_extension("").string() + "_obs.h5")
           : fs::path(a.output);
-  refuse_output_is_input(out_path, a.run_file, "the run file");
-  {  // nor the run's checkpoints next to it
-    const fs::path chk = checkpoint_path(a.run_file);
-    for (const fs::path& c : {chk, previous_checkpoint_path(chk)}) {
-      std::error_code eq;
-      if (fs::equivalent(out_path, c, eq) && !eq)
-        throw ConfigError("-o " + out_path.string() + ": this is the checkpoint of " +
-                          a.run_file + "; choose another output file with -o");
-    }
-  }
+  refuse_output_is_input(out_path, a.run_file, "the run file observe reads");
+  const fs::path chk = checkpoint_path(a.run_file);  // nor the run's checkpoints
+  for (const fs::path& c : {chk, previous_checkpoint_path(chk)})
+    refuse_output_is_input(out_path, c, "a checkpoint of the run");
   std::error_code ec;
   if (fs::exists(out_path, ec) && !a.overwrite)
     throw IoError(out_path.string() +
