@@ -118,7 +118,7 @@ double disk_averaged_reflectance(cplx m) {
 MieEfficiencies geometric_optics(cplx m, double x) {
   const double r = disk_averaged_reflectance(m);
   const double w = 4.0 * x * m.imag();
-  // Q_ADT(w) -> 1 for w >> 1; series 2w/3 - w^2/2 + ... for small w (cancellation)
+  // Q_ADT(w) -> 1 for w >> 1; series 2w/3 - w^2/4 + ... for small w (cancellation)
   const double q_adt =
       w > 1e-3 ? 1.0 + 2.0 * std::exp(-w) / w + 2.0 * (std::exp(-w) - 1.0) / (w * w)
                : 2.0 * w / 3.0 - w * w / 4.0;

@@ -78,7 +78,11 @@ cplx bruggeman(cplx eps1, cplx eps2, double f2) {
 
 cplx porous_index(cplx m_solid, double phi) {
   if (phi >= 1.0) return m_solid;
-  const cplx eps = maxwell_garnett(m_solid * m_solid, cplx(1.0, 0.0), 1.0 - phi);
+  // Vacuum is the matrix and the solid the inclusions, at volume fraction phi (Kataoka
+  // et al. 2014, eq. 3). The other way round (vacuum bubbles in a solid, the
+  // Hashin-Shtrikman bound of a foam) gave an aggregate of phi ~ 1e-3 3.2x (ice-silicate
+  // mix) to 14x (silicate) the absorption per gram of its own monomers at 1.3 mm.
+  const cplx eps = maxwell_garnett(cplx(1.0, 0.0), m_solid * m_solid, phi);
   cplx m = std::sqrt(eps);
   if (m.imag() < 0.0) m = -m;
   return m;

@@ -45,8 +45,10 @@ std::complex<double> bruggeman(std::complex<double> eps1, std::complex<double> e
                                double f2);
 
 //! Refractive index of a porous aggregate of filling factor phi: Maxwell-Garnett with
-//! vacuum inclusions (volume fraction 1 - phi) in the solid (Kataoka et al. 2014, A&A
-//! 568, A42, §2.2, who use it for porous aggregates at mm wavelengths).
+//! vacuum as the matrix and the solid as inclusions of volume fraction phi, (eps - 1) /
+//! (eps + 2) = phi (eps_s - 1)/(eps_s + 2) (Kataoka et al. 2014, A&A 568, A42, §2.2,
+//! eq. 3, for porous aggregates at mm wavelengths). In the dilute limit an aggregate
+//! small against the wavelength absorbs per gram as its solid does (Rayleigh).
 std::complex<double> porous_index(std::complex<double> m_solid, double phi);
 
 //! Absorption opacity per gram of dust of a sphere of radius a [cm] and internal

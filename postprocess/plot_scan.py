@@ -39,7 +39,7 @@ def _str(v):
 
 def load_summary(scan_dir):
     """The summary table: dict with 'status', 'name', 'axes' {key: (values, spacing)},
-    'outcome' {name: values}, 'sampling'."""
+    'outcome' {name: values}, 'units' {name: units attribute}, 'sampling'."""
     with h5py.File(os.path.join(scan_dir, "summary.h5"), "r") as f:
         dec = lambda a: np.array([x.decode() for x in a])  # noqa: E731
         axes = {}
@@ -49,7 +49,8 @@ def load_summary(scan_dir):
             axes[k] = (ds[()] if ds.dtype.kind == "f" else dec(ds[()]), _str(sp))
         return {"status": dec(f["runs/status"][()]), "name": dec(f["runs/name"][()]),
                 "axes": axes, "sampling": _str(f.attrs["sampling"]),
-                "outcome": {k: ds[()] for k, ds in f["outcome"].items()}}
+                "outcome": {k: ds[()] for k, ds in f["outcome"].items()},
+                "units": {k: _str(ds.attrs.get("units", "")) for k, ds in f["outcome"].items()}}
 
 
 def grid_map(x, y, z):
@@ -91,8 +92,11 @@ def norm_for(z):
     return None
 
 
-def label(name):
-    return f"{name} [{UNITS[name]}]" if name in UNITS else name
+def label(name, s):
+    """Axis label with the outcome's units: the summary's `units` attribute (summaries
+    written before it was filled in have "": then the table above)."""
+    units = s.get("units", {}).get(name) or UNITS.get(name, "")
+    return f"{name} [{units}]" if units else name
 
 
 def line_figure(s, key, outcomes, path):
@@ -128,7 +132,7 @@ def line_figure(s, key, outcomes, path):
             ax.set_yscale("log")
             ax.set_ylim(norm.vmin / 2, norm.vmax * 2)
         ax.set_xlabel(key)
-        ax.set_ylabel(label(o))
+        ax.set_ylabel(label(o, s))
         if k == 0 and (groups[0][0] is not None or bad.any()):
             ax.legend(fontsize=7)
     fig.savefig(path, dpi=110)
@@ -161,7 +165,7 @@ def map_figure(s, kx, ky, o, path):
     ax.set_xlabel(kx)
     ax.set_ylabel(ky)
     ax.set_title(o, fontsize=10)
-    fig.colorbar(im, ax=ax, label=label(o))
+    fig.colorbar(im, ax=ax, label=label(o, s))
     fig.savefig(path, dpi=110)
 
 

@@ -17,8 +17,8 @@ Layout (written by the C++ code):
                      r_min_pl_si [au], budget_error, ...) and t_first_pl (N,) [yr]
     /solver          attrs nst, nfe, nje, netf, nni, nncf, wall_s, status
 Every dataset carries `units` and `description` attributes. /timeseries, /pebbles and
-/summary are absent from older and transport-only files; /summary and /solver are
-written only when the run finishes.
+/summary are absent from older and transport-only files; /summary is written when the
+run completes, /solver also when it stops or fails (its status says which).
 
 Usage:
     run = load_run("out/run.h5")
@@ -61,7 +61,7 @@ class Run:
         units       dict dataset path ("snapshots/sigma_d", "grid/r_c", ...) -> unit str
         descriptions  dict dataset path -> `description` attribute str
         attrs       root attributes as str (config_toml, git_sha, version, scene)
-        solver      dict of /solver attributes (empty if the run did not finish)
+        solver      dict of /solver attributes (empty for a killed run)
         config      the resolved scene, config_toml parsed with tomllib (empty if absent)
     """
 
@@ -102,8 +102,13 @@ class Run:
 
     @property
     def finished(self):
-        """True when the run completed (the file has /solver or /summary)."""
-        return bool(self.solver) or bool(self.summary)
+        """True when the run completed: /solver's status is "completed". A run stopped
+        (SIGINT, SIGTERM, --max-wall) or failed writes /solver too, with another status;
+        a killed run has none. Files without a status count as finished with /summary."""
+        status = self.solver.get("status")
+        if status is None:
+            return bool(self.summary)
+        return _to_str(status) == "completed"
 
     @property
     def monitor_r_au(self):

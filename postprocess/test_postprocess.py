@@ -58,11 +58,12 @@ def write_dataset(group, name, data, units, description, extendible=False):
     dset.attrs["description"] = description
 
 
-def write_run(path, n_cells=200, time_yr=None, killed=False):
+def write_run(path, n_cells=200, time_yr=None, killed=False, status="completed"):
     """Synthetic run file following the layout; returns the arrays written.
 
     killed=True imitates a writer killed mid-snapshot: /snapshots/sigma_g is one row
-    shorter than the other snapshot datasets and /solver is missing.
+    shorter than the other snapshot datasets and /solver is missing. `status`: /solver's
+    (panoptic writes "completed", "failed" or "stopped by ...; restart from ...").
     """
     time_yr = np.concatenate([[0.0], np.geomspace(10.0, 1e6, 40)]) if time_yr is None else time_yr
     r_f = np.geomspace(0.1, 1000.0, n_cells + 1)
@@ -101,7 +102,7 @@ def write_run(path, n_cells=200, time_yr=None, killed=False):
             for key, value in dict(nst=1234, nfe=2345, nje=56, netf=3, nni=2000, nncf=1).items():
                 solver.attrs[key] = np.int64(value)
             solver.attrs["wall_s"] = 12.5
-            solver.attrs["status"] = "success"
+            solver.attrs["status"] = status
     return {"r_c": r_c, "r_f": r_f, "area": area, "time": time_yr, "sigma_d": sigma_d,
             "sigma_g": sigma_g, "m_dust": m_dust}
 
@@ -219,7 +220,7 @@ def check_reader_complete(tmp):
     assert run.config == {"grid": {"r_in_au": 0.1, "r_out_au": 1000.0, "n_cells": 200},
                           "disk": {"alpha": 1e-3}}, run.config
     assert run.solver == {"nst": 1234, "nfe": 2345, "nje": 56, "netf": 3, "nni": 2000,
-                          "nncf": 1, "wall_s": 12.5, "status": "success"}, run.solver
+                          "nncf": 1, "wall_s": 12.5, "status": "completed"}, run.solver
     assert all(type(run.solver[k]) is int for k in ("nst", "nfe", "nje", "netf", "nni", "nncf"))
     assert np.allclose(run.dust_mass(), ref["m_dust"], rtol=1e-13)
     profile, t = run.at_time("sigma_d", 1.2e4)
@@ -279,6 +280,17 @@ def check_reader_groups_absent(tmp):
     assert run.pebble_names == [] and run.monitor_r_au.size == 0
     assert run.finished     # /solver is there
     return "reader: file without /timeseries, /pebbles, /summary gives empty dicts"
+
+
+def check_reader_stopped_or_failed_not_finished(tmp):
+    # a stopped or failed run writes /solver as well: only "completed" is finished
+    seen = {}
+    for status in ("completed", "failed", "stopped by SIGINT; restart from run.chk.h5"):
+        path = os.path.join(tmp, "status.h5")
+        write_run(path, status=status)
+        seen[status.split(";")[0]] = reader.load_run(path).finished
+    assert seen == {"completed": True, "failed": False, "stopped by SIGINT": False}, seen
+    return "reader: only a /solver status of completed counts as finished"
 
 
 def check_reader_timeseries_killed(tmp):
@@ -541,7 +553,8 @@ def _is_png(path):
 
 
 CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
-          check_reader_groups_absent, check_reader_timeseries_killed,
+          check_reader_groups_absent, check_reader_stopped_or_failed_not_finished,
+          check_reader_timeseries_killed,
           check_reader_timeseries_zero_rows, check_reader_monitor_names,
           check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,

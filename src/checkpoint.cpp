@@ -401,8 +401,12 @@ RunOutput continue_output(const RestartPoint& restart, const fs::path& output,
     path = fs::exists(sibling, ec) ? sibling : fs::path(chk.output_file);
     if (!fs::exists(path, ec))
       throw IoError(chk_name + ": the run's output file " + chk.output_file +
-                    " does not exist (nor " + sibling.string() +
-                    "); pass it with -o, or start a new run without --restart");
+                    " does not exist" +
+                    (fs::weakly_canonical(sibling, ec) ==
+                             fs::weakly_canonical(fs::path(chk.output_file), ec)
+                         ? std::string()
+                         : " (nor " + sibling.string() + ")") +
+                    "; pass it with -o, or start a new run without --restart");
   }
   const auto n_keep = static_cast<std::size_t>(chk.snapshot_index) + 1;
   // Read-only first: a wrong file must be refused before a row of it is cut.
@@ -419,7 +423,9 @@ RunOutput continue_output(const RestartPoint& restart, const fs::path& output,
       t_yr = h5::read_doubles(g.get(), "time");
     } catch (const IoError& e) {
       throw IoError(path.string() + ": cannot read the run's output file (" + e.what() +
-                    "); pass the right file with -o");
+                    "): it is damaged (truncated or overwritten) or not a panoptic "
+                    "output, and cannot be continued; restore it, pass the run's output "
+                    "with -o, or start the run again without --restart");
     }
     if (run_id != chk.run_id)
       throw IoError(path.string() + ": not the output of the run of checkpoint " +
@@ -431,6 +437,13 @@ RunOutput continue_output(const RestartPoint& restart, const fs::path& output,
                     std::to_string(chk.t / units::kYr) + " yr of checkpoint " + chk_name +
                     " (it has " + std::to_string(t_yr.size()) +
                     " snapshots); pass that run's output file with -o");
+    if (t_yr.size() > n_keep)  // said aloud: a copied or older checkpoint cuts a run
+      std::fprintf(
+          stderr,
+          "panoptic: warning: %s: its %zu snapshots after the checkpoint's (t = "
+          "%.6g yr, snapshot %ld) up to t = %.6g yr are cut and computed again\n",
+          path.c_str(), t_yr.size() - n_keep, chk.t / units::kYr, chk.snapshot_index,
+          t_yr.back());
   }
   RunOutput out(path, ContinueRun{n_keep, chk.row_digests});
   char line[160];
@@ -470,11 +483,13 @@ double parse_duration(std::string_view text) {
   const auto bad = [&] {
     return ConfigError("--max-wall " + std::string(text) +
                        ": not a duration; write e.g. 90m, 2h, 3600s or 1h30m (units d, "
-                       "h, m, s; a plain number is seconds), greater than 0");
+                       "h, m, s, each once and from the largest down; a plain number is "
+                       "seconds), greater than 0");
   };
   double total = 0.0;
   std::size_t i = 0;
   bool any = false, bare = false;
+  double previous_unit = 1e300;  // "90m30m" or "30m1h": a typo, not a sum to guess at
   while (i < text.size()) {
     double x = 0.0;
     const auto r = std::from_chars(text.data() + i, text.data() + text.size(), x);
@@ -502,6 +517,8 @@ double parse_duration(std::string_view text) {
           throw bad();
       }
       ++i;
+      if (!(unit < previous_unit)) throw bad();
+      previous_unit = unit;
     }
     total += x * unit;
     any = true;

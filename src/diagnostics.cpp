@@ -32,11 +32,14 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
   const auto snaps = sim.output_times();
   const long per = cfg.integer("pebbles.samples_per_snapshot");
   // sample grid: `per` log-spaced samples in every snapshot interval (linear in the
-  // first)
+  // first), the last exactly at the snapshot: CVODE's step lands there (its stop time),
+  // so the sample is taken at the snapshot's state, and finish() does not repeat it at
+  // t_end (a last sample rounded below t_end used to give two rows at t_end)
   for (std::size_t k = 1; k < snaps.size(); ++k)
     for (long j = 1; j <= per; ++j) {
       const double a = snaps[k - 1], b = snaps[k];
-      sample_times_.push_back(k == 1 || a <= 0.0
+      sample_times_.push_back(j == per ? b
+                              : k == 1 || a <= 0.0
                                   ? a + (b - a) * double(j) / double(per)
                                   : a * std::pow(b / a, double(j) / double(per)));
     }
@@ -89,7 +92,9 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
       double previous = 0.0;
       for (hsize_t i = 0; i < times.size(); ++i) {
         if (gone[i]) continue;
-        if (!(times[i] > 0.0 && times[i] >= previous && times[i] * kYr <= t_start)) break;
+        // compared in years, as the rows were written (t / kYr): a row at the
+        // checkpoint's own time is kept, whatever the rounding of kYr
+        if (!(times[i] > 0.0 && times[i] >= previous && times[i] <= t_start / kYr)) break;
         previous = times[i];
         keep = i + 1;
       }
@@ -149,6 +154,7 @@ void RunDiagnostics::sample(double t, std::span<const double> y) {
     m /= kMearth;
   }
   budget.push_back(std::abs(total - sim_.initial_dust_mass()) / kMearth);
+  last_sample_t_ = t;
   rows_time_.push_back({t / kYr});
   rows_flux_.push_back(std::move(flux));
   rows_mass_.push_back(std::move(mass));
@@ -170,7 +176,7 @@ void RunDiagnostics::flush() {
 }
 
 std::string RunDiagnostics::finish(double t, std::span<const double> y) {
-  sample(t, y);
+  if (!(last_sample_t_ >= t)) sample(t, y);  // unless the last step's sample is at t
   flush();
   std::ostringstream txt;
   const auto& grid = sim_.grid();

@@ -43,6 +43,7 @@ class RunDiagnostics {
   RunOutput& out_;
   std::vector<double> sample_times_;  //!< [s]
   std::size_t next_sample_ = 0;
+  double last_sample_t_ = -1.0;  //!< time of the last row sampled by this process [s]
   std::string lost_;
   std::vector<std::vector<double>> rows_time_, rows_flux_, rows_mass_, rows_budget_;
   std::vector<double> t_first_;    //!< per cell, first planetesimal formation [s]

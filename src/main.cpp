@@ -100,6 +100,9 @@ struct RunArgs {
   bool overwrite = false;
   std::string restart;   //!< --restart CHK.h5
   std::string max_wall;  //!< --max-wall DURATION
+  bool max_wall_given =
+      false;           //!< so that `--max-wall ""` (an unset variable) is refused
+  std::string preset;  //!< --fast / --accurate: "fast", "accurate" or ""
 };
 
 fs::path default_output(const Config& cfg) {
@@ -157,10 +160,24 @@ void print_budget(const Simulation& sim, std::span<const double> y) {
 }
 
 int run(const RunArgs& a) {
+  // 1 stop signals first: SIGINT or SIGTERM during the set-up (a restart's copy of a
+  // large output takes a while) is then handled at the first step like any other, with
+  // the checkpoint and exit 75, instead of killing the process before the handlers are
+  // in place. A parent (panoptic scan) may have blocked them until now; a stop that
+  // arrived meanwhile is delivered here.
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  {
+    sigset_t stop_signals;
+    sigemptyset(&stop_signals);
+    sigaddset(&stop_signals, SIGTERM);
+    sigaddset(&stop_signals, SIGINT);
+    sigprocmask(SIG_UNBLOCK, &stop_signals, nullptr);
+  }
   // 2 scene
   const Config cfg = load_scene(a.scene, a.overrides);
   validate_scene(cfg);
-  const double max_wall = a.max_wall.empty() ? 0.0 : parse_duration(a.max_wall);
+  const double max_wall = a.max_wall_given ? parse_duration(a.max_wall) : 0.0;
   // 3 model
   Simulation sim(cfg);
   const StateLayout& layout = sim.model().layout();
@@ -176,7 +193,16 @@ int run(const RunArgs& a) {
                    "instead (t = %.6g yr, snapshot %ld)\n",
                    restart->fallback_note.c_str(), restart->path.c_str(),
                    restart->chk.t / units::kYr, restart->chk.snapshot_index);
-    changed = check_compatible(restart->chk, restart->path, cfg, layout);
+    try {
+      changed = check_compatible(restart->chk, restart->path, cfg, layout);
+    } catch (const ConfigError& e) {
+      if (a.preset.empty()) throw;
+      std::string sets;
+      for (const std::string& s : preset_overrides(a.preset)) sets += " " + s;
+      throw ConfigError(std::string(e.what()) + "\n(--" + a.preset + " sets" + sets +
+                        ", shown above as --set: restart without --" + a.preset +
+                        " to continue the run with its own grid and tolerances)");
+    }
   }
   const std::vector<double> times =
       restart ? times_after_restart(sim.output_times(), restart->chk.t)
@@ -259,17 +285,8 @@ int run(const RunArgs& a) {
     checkpointed = last.snapshot_index;
   };
   // 7 snapshots: CVODE is reinitialised at each (so a restart is bit for bit); a
-  // checkpoint is written at a snapshot when due; a stop checkpoints the last one
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  {  // a parent (panoptic scan) may have blocked them until the handlers are in place;
-     // a stop that arrived meanwhile is delivered now and handled at the first step
-    sigset_t stop_signals;
-    sigemptyset(&stop_signals);
-    sigaddset(&stop_signals, SIGTERM);
-    sigaddset(&stop_signals, SIGINT);
-    sigprocmask(SIG_UNBLOCK, &stop_signals, nullptr);
-  }
+  // checkpoint is written at a snapshot when due; a stop checkpoints the last one (a
+  // stop signalled during the set-up above: at the first step)
   const bool reinit = cfg.flag("solver.reinit_at_snapshots");
   CheckpointSchedule schedule(cfg.real("checkpoint.every_wall_s"),
                               cfg.integer("checkpoint.every_snapshots"), 0.0);
@@ -350,6 +367,10 @@ int run(const RunArgs& a) {
       "solver: %ld steps, %ld RHS, %ld Jacobian evaluations, %ld error-test and %ld "
       "nonlinear convergence failures, %ld reinitialisations, %.3f s wall\n",
       s.nst, s.nfe, s.nje, s.netf, s.nncf, s.nreinit, wall);
+  if (restart)  // the counts above are the run's; what this process did since the restart
+    std::printf("this process: %ld steps, %ld RHS from t = %.6g yr, %.3f s wall\n",
+                s.nst - restart->chk.stats.nst, s.nfe - restart->chk.stats.nfe,
+                restart->chk.t / units::kYr, seconds_since(start));
   print_budget(sim, cvode.state());
   return code;
 }
@@ -567,7 +588,9 @@ int main(int argc, char** argv) {
 
   try {
     if (*run_cmd) {
-      overrides = with_preset(fast ? "fast" : accurate ? "accurate" : "", overrides);
+      args.preset = fast ? "fast" : accurate ? "accurate" : "";
+      overrides = with_preset(args.preset, overrides);
+      args.max_wall_given = run_cmd->count("--max-wall") > 0;
       return run(args);
     }
     if (*check_cmd) return check(scene, overrides);

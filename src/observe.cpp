@@ -106,7 +106,14 @@ Snapshot read_snapshot(const std::string& file, double time_yr) {
 struct Materials {
   physics::OpticalTable ice, sil;
   std::string outer, rule;
-  double f_sil_volume = 0.0;  //!< silicate volume fraction of the mix
+  double f_sil_volume = 0.0;            //!< silicate volume fraction of the mix
+  double rho_ice = 0.0, rho_sil = 0.0;  //!< densities of the optical solids [g cm^-3]
+  //! Density of the solid whose optical constants the outer particles get [g cm^-3].
+  double outer_density() const {
+    if (outer == "ice") return rho_ice;
+    if (outer == "sil") return rho_sil;
+    return (1.0 - f_sil_volume) * rho_ice + f_sil_volume * rho_sil;
+  }
   cplx outer_index(double lambda_mm) const {
     if (outer == "ice") return ice.at(lambda_mm);
     if (outer == "sil") return sil.at(lambda_mm);
@@ -222,9 +229,13 @@ int observe(const ObserveArgs& a) {
   const double f_ice = cfg.real("snowline.f_ice");
   const double rho_ice = cfg.real("observe.water_ice_rho");
   const double rho_sil = cfg.real("material.sil_rho0");
-  Materials mat{table(cfg, "ice"), table(cfg, "sil"), cfg.str("observe.outer_species"),
+  Materials mat{table(cfg, "ice"),
+                table(cfg, "sil"),
+                cfg.str("observe.outer_species"),
                 cfg.str("observe.mix_rule"),
-                (1.0 - f_ice) / rho_sil / (f_ice / rho_ice + (1.0 - f_ice) / rho_sil)};
+                (1.0 - f_ice) / rho_sil / (f_ice / rho_ice + (1.0 - f_ice) / rho_sil),
+                rho_ice,
+                rho_sil};
   for (const double l : a.lambda_mm) {
     const bool outer_ice = mat.outer != "sil";
     if (!mat.sil.covers(l) || (outer_ice && !mat.ice.covers(l)))
@@ -261,13 +272,19 @@ int observe(const ObserveArgs& a) {
   // 3 opacity, optical depth and intensity per cell and wavelength
   const std::size_t nl = a.lambda_mm.size();
   const double mu = std::cos(a.incl_deg * units::kPi / 180.0);
+  // The particle's mass and size are the run's (rho_int = phi rho0 of its monomers); its
+  // optical solid has the density of the material whose constants it gets (silicate,
+  // water ice of observe.water_ice_rho, or their mix), so the volume fraction of that
+  // solid, the filling factor of the mixing rule, is rho_int / rho_solid: the run's phi
+  // when the densities agree (the default mix: 1.408 against material.ice_rho0 = 1.4).
+  // A compact grain (--a-cm, or a run without sizes) is of the optical solid itself.
   std::vector<double> a_cm(n), phi(n), rho(n);
   for (std::size_t i = 0; i < n; ++i) {
+    const double rho_solid = inner[i] ? mat.rho_sil : mat.outer_density();
+    const bool compact = a.a_cm_given || !has_size;
     a_cm[i] = a.a_cm_given ? a.a_cm : s.a[i];
-    phi[i] = a.a_cm_given || !has_size ? 1.0 : s.phi[i];
-    rho[i] = a.a_cm_given || !has_size
-                 ? cfg.real(inner[i] ? "material.sil_rho0" : "material.ice_rho0")
-                 : s.rho_int[i];
+    rho[i] = compact ? rho_solid : s.rho_int[i];
+    phi[i] = compact ? 1.0 : std::min(1.0, s.rho_int[i] / rho_solid);
   }
   std::vector<double> kappa(nl * n), tau(nl * n), inten(nl * n), bnu(nl * n), nu(nl);
   for (std::size_t l = 0; l < nl; ++l) {
@@ -431,7 +448,8 @@ int observe(const ObserveArgs& a) {
                  "cell), T = /disk/T of the run; geometrically thin disk");
     h5::set_attr(root, "opacity",
                  "Mie (Bohren & Huffman 1983 BHMIE, Wiscombe 1980 terms) for x <= 1e4, "
-                 "geometric optics above; porosity by Maxwell-Garnett with vacuum; "
+                 "geometric optics above; porosity by Maxwell-Garnett, solid in a vacuum "
+                 "matrix (Kataoka et al. 2014 eq. 3); "
                  "inside the snow line silicate, outside observe.outer_species = " +
                      mat.outer + " (" + mat.rule + ", silicate volume fraction " +
                      num(mat.f_sil_volume) + ")");
@@ -452,7 +470,9 @@ int observe(const ObserveArgs& a) {
       write_array(g.get(), "sigma_d", {hn}, s.sigma_d, "g cm^-2",
                   "dust surface density of the snapshot");
       write_array(g.get(), "a", {hn}, a_cm, "cm", "particle radius used");
-      write_array(g.get(), "phi", {hn}, phi, "", "filling factor used");
+      write_array(g.get(), "phi", {hn}, phi, "",
+                  "filling factor used: volume fraction of the optical solid, rho_int / "
+                  "its density (at most 1)");
       write_array(g.get(), "rho_int", {hn}, rho, "g cm^-3", "internal density used");
       std::vector<double> sp(n);
       for (std::size_t i = 0; i < n; ++i) sp[i] = inner[i];

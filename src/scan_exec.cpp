@@ -284,13 +284,21 @@ RunInspection inspect_run(const fs::path& h5path, const std::string& config_toml
     h5::Handle g = h5::open_group(f.get(), "summary");
     for (const std::string& name : h5::dataset_names(g.get())) {
       const std::vector<double> v = h5::read_doubles(g.get(), name);
+      std::string units;
+      {
+        h5::Handle ds(H5Dopen2(g.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+        if (ds.valid() && h5::has_attr(ds.get(), "units"))
+          units = h5::get_attr_string(ds.get(), "units");
+      }
       if (v.size() == 1) {
         r.summary[name] = v[0];
+        r.units[name] = units;
       } else if (name == "t_first_pl") {
         double lo = std::numeric_limits<double>::quiet_NaN();
         for (double x : v)
           if (!std::isnan(x) && !(x >= lo)) lo = x;
         r.summary["t_first_pl_min"] = lo;
+        r.units["t_first_pl_min"] = units;
       }
     }
     if (!r.summary.count("m_dust_final")) {

@@ -62,6 +62,8 @@ struct RunInspection {
   double wall_s = -1.0;
   //! /summary scalars (t_first_pl reduced to its minimum over the cells, NaN: none).
   std::map<std::string, double> summary;
+  //! the `units` attribute of each /summary dataset (t_first_pl_min: t_first_pl's)
+  std::map<std::string, std::string> units;
 };
 
 //! Complete means: the file opens, its root attribute config_toml is `config_toml` (the

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "src/error.hpp"
@@ -21,7 +22,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct Row {
   std::string status, error, worker;
-  long exit_code = 0;
+  std::optional<long> exit_code;  //!< none without a record (the run never ended)
   double wall_s = kNaN, steps = kNaN;
   std::map<std::string, double> outcome;
 };
@@ -91,24 +92,26 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
   ScanCounts counts;
   std::vector<Row> rows(m.entries.size());
   std::set<std::string> outcome_names;
+  std::map<std::string, std::string> outcome_units;  // from the first run that has each
   for (std::size_t i = 0; i < m.entries.size(); ++i) {
     const std::string& name = m.entries[i].name;
     Row& row = rows[i];
     const RunInspection in = inspect_run(run_file(dir, name, "h5"),
                                          resolved[i].config_toml, resolved[i].t_end_yr);
     const std::optional<RunRecord> rec = read_record(run_file(dir, name, "status"));
+    // wall time: the run's own (/solver wall_s, summed over the segments of a run
+    // continued from its checkpoints), else its last process's
+    row.wall_s = in.wall_s >= 0 ? in.wall_s : rec ? rec->wall_s : kNaN;
     if (rec) {
       row.worker = rec->worker;
       row.exit_code = rec->exit_code;
-      row.wall_s = rec->wall_s;
-    } else {
-      row.wall_s = in.wall_s >= 0 ? in.wall_s : kNaN;
     }
     if (in.steps >= 0) row.steps = static_cast<double>(in.steps);
     if (in.complete) {
       row.status = "completed";
       row.outcome = in.summary;
       for (const auto& [k, v] : in.summary) outcome_names.insert(k);
+      for (const auto& [k, u] : in.units) outcome_units.emplace(k, u);
       ++counts.completed;
       continue;
     }
@@ -153,7 +156,7 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
       error[i] = rows[i].error;
       worker[i] = rows[i].worker;
       id[i] = static_cast<double>(m.entries[i].id);
-      code[i] = static_cast<double>(rows[i].exit_code);
+      code[i] = rows[i].exit_code ? static_cast<double>(*rows[i].exit_code) : kNaN;
       wall[i] = rows[i].wall_s;
       steps[i] = rows[i].steps;
     }
@@ -164,8 +167,11 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
     write_strings(runs.get(), "error", error, "why the run failed or is not complete");
     write_strings(runs.get(), "worker", worker, "worker that ran it (local/k, rankR/k)");
     h5::write_vector(runs.get(), "exit_code", code, "",
-                     "exit code of panoptic run (-N: killed by signal N)");
-    h5::write_vector(runs.get(), "wall_s", wall, "s", "wall time of the run's process");
+                     "exit code of panoptic run (-N: killed by signal N; NaN: "
+                     "no record, the run has not ended)");
+    h5::write_vector(runs.get(), "wall_s", wall, "s",
+                     "wall time of the run (/solver wall_s: all its segments), else of "
+                     "its last process");
     h5::write_vector(runs.get(), "steps", steps, "", "CVODE steps (/solver nst)");
     h5::Handle axes_g = h5::create_group(f.get(), "axes");
     for (std::size_t j = 0; j < m.axes.size(); ++j) {
@@ -188,15 +194,17 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
     }
     h5::Handle out_g = h5::create_group(f.get(), "outcome");
     h5::set_attr(out_g.get(), "description",
-                 std::string("each run's /summary scalars (units as there: M_earth, au, "
-                             "yr); t_first_pl_min = min over cells of t_first_pl; NaN "
-                             "where the run is not complete"));
+                 std::string("each run's /summary scalars, with their units "
+                             "attribute; t_first_pl_min = min over cells of t_first_pl; "
+                             "NaN where the run is not complete"));
     for (const std::string& o : outcome_names) {
       std::vector<double> v(n, kNaN);
       for (std::size_t i = 0; i < n; ++i)
         if (const auto it = rows[i].outcome.find(o); it != rows[i].outcome.end())
           v[i] = it->second;
-      h5::write_vector(out_g.get(), o, v, "", "/summary/" + o + " of each run");
+      const auto u = outcome_units.find(o);
+      h5::write_vector(out_g.get(), o, v, u == outcome_units.end() ? "" : u->second,
+                       "/summary/" + o + " of each run");
     }
     if (H5Fflush(f.get(), H5F_SCOPE_GLOBAL) < 0)
       throw IoError(tmp.string() + ": flushing failed");
@@ -217,8 +225,8 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
     for (const auto& [k, v] : m.entries[i].values)
       fields.push_back(csv_field(unquote(v)));
     fields.insert(fields.end(),
-                  {r.status, std::to_string(r.exit_code), csv_number(r.wall_s),
-                   csv_number(r.steps), csv_field(r.worker)});
+                  {r.status, r.exit_code ? std::to_string(*r.exit_code) : "",
+                   csv_number(r.wall_s), csv_number(r.steps), csv_field(r.worker)});
     for (const std::string& o : outcome_names) {
       const auto it = r.outcome.find(o);
       fields.push_back(csv_number(it == r.outcome.end() ? kNaN : it->second));

@@ -62,6 +62,22 @@ def run_summary(h5):
     return out
 
 
+def text(v):
+    """An HDF5 string attribute as str (h5py gives bytes for fixed-length strings)."""
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def run_summary_units(h5):
+    """The `units` attribute of each /summary scalar of one run file (t_first_pl's as
+    t_first_pl_min's), as the scan's /outcome should carry them."""
+    out = {}
+    with h5py.File(h5, "r") as f:
+        for k, ds in f["summary"].items():
+            name = "t_first_pl_min" if k == "t_first_pl" else k
+            out[name] = text(ds.attrs["units"])
+    return out
+
+
 def run_id(h5):
     with h5py.File(h5, "r") as f:
         return f.attrs["run_id"]

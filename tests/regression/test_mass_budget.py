@@ -37,6 +37,11 @@ def check_budgets(cases, args, c):
         c.check(err < 1e-12, f"{label}: budget closes to 1e-12 ({err:.1e})")
         c.check(consistent < 1e-12, f"{label}: m_dust equals the sum of sigma_d * area")
         c.check(np.all(r.snapshots["sigma_d"] >= 0), f"{label}: no negative Sigma_d")
+        ts = r.timeseries["time"]
+        c.check(np.all(np.diff(ts) > 0) and ts[-1] == r.time[-1] and
+                np.isin(r.time[1:], ts).all(),
+                f"{label}: /timeseries/time rises strictly ({len(ts)} rows), with a row at "
+                f"every snapshot and the last at t_end")
 
 
 def main():

@@ -10,6 +10,7 @@
 import glob
 import os
 import subprocess
+import tomllib
 
 import h5py
 import numpy as np
@@ -147,9 +148,23 @@ def main():
     with h5py.File(grow) as g, h5py.File(obs) as f:
         c.check(f.attrs["snapshot_index"] == 2 and f.attrs["time_yr"] == 1000.0,
                 f"--time-yr 1400 -> the snapshot at {f.attrs['time_yr']} yr (nearest: 1000)")
+        # the mixing rule's filling factor is the volume fraction of the optical solid,
+        # rho_int / rho_solid: silicate inside the snow line, the ice-silicate mix
+        # outside, of density 1/(f_ice/rho_ice + (1 - f_ice)/rho_sil)
+        text = f.attrs["config_toml"]
+        cfg = tomllib.loads(text.decode() if isinstance(text, bytes) else text)
+        rho_sil = cfg["material"]["sil_rho0"]
+        f_ice, rho_ice = cfg["snowline"]["f_ice"], cfg["observe"]["water_ice_rho"]
+        rho_solid = np.where(f["model/inner_species"][()] == 1, rho_sil,
+                             1.0 / (f_ice / rho_ice + (1.0 - f_ice) / rho_sil))
+        rho_int = g["snapshots/rho_int"][2]
+        phi_expected = np.minimum(1.0, rho_int / rho_solid)
         c.check(np.array_equal(f["model/a"][()], g["snapshots/a"][2]) and
-                np.array_equal(f["model/phi"][()], g["snapshots/phi"][2]),
-                "a and phi of that snapshot are used")
+                np.array_equal(f["model/rho_int"][()], rho_int) and
+                np.allclose(f["model/phi"][()], phi_expected, rtol=1e-14, atol=0) and
+                np.allclose(g["snapshots/phi"][2], phi_expected, rtol=1e-2),
+                "a and rho_int of that snapshot are used, phi = rho_int / rho of the "
+                "optical solid (within 1 % of the run's phi for the default mix)")
         k = f["model/kappa_abs"][()]
         c.check(np.all(np.isfinite(k)) and np.all(k > 0), "kappa_abs finite and > 0")
         tau_ok = np.allclose(f["model/tau"][()], k * g["snapshots/sigma_d"][2], rtol=1e-14)

@@ -6,6 +6,8 @@ The checkpoints are those at the end of shorter runs of the same scene (output.t
 cut after snapshot j, so output.t_end_yr = its last time: a compatible change), restarted
 with the full list; plus the mid-run .chk.prev.h5 of the default log-spaced scene, and a
 scene with an evolving gas disk (another layout: sigma_d, sigma_g per cell)."""
+import re
+
 import h5py
 import numpy as np
 
@@ -19,9 +21,10 @@ SCENE = "params/tests/restart.toml"  # transport alone: short runs
 FIDUCIAL = "params/fiducial.toml"
 BASE = []
 TIMES = [float(t) for t in np.geomspace(100.0, 1e6, 13)]
-# A restart from a mid-run checkpoint also continues /timeseries and rewrites /summary
-# identically. (A finished run continued to a later t_end keeps the end-of-run sample of
-# /timeseries, so the cut runs below compare /snapshots only.)
+# A restart also continues /timeseries and rewrites /summary identically, from a mid-run
+# checkpoint and from the final one of a run cut at a snapshot (its last /timeseries
+# sample is at that snapshot, as in the uninterrupted run). SCENE has no /timeseries;
+# the growth model's cut run below checks it.
 MID_RUN_GROUPS = ("snapshots", "timeseries", "summary")
 
 
@@ -47,6 +50,7 @@ def main():
         c.check(chk["snapshot_index"] == j and chk["complete"] == 1,
                 f"run cut after snapshot {j}: its final checkpoint is at snapshot "
                 f"{chk['snapshot_index']}")
+        cut_nst = solver_attrs(out)["nst"]
         p = panoptic(args.exe, SCENE, "--restart", checkpoint_of(out),
                      sets=BASE + times_set(TIMES))
         diffs = snapshot_differences(ref, out)
@@ -58,7 +62,13 @@ def main():
         s = solver_attrs(out)
         c.check(all(s[k] == ref_solver[k] for k in ("nst", "nfe", "nje", "nreinit")),
                 f"restart from snapshot {j}: same solver statistics (steps {s['nst']})")
-        c.check("restart from" in p.stdout, "the run says it restarts")
+        # the restarted process itself integrated only from the checkpoint on (a
+        # "restart" that integrated again from t = 0 would give the same bits)
+        own = re.search(r"this process: (\d+) steps", p.stdout)
+        c.check("restart from" in p.stdout and own is not None and
+                int(own.group(1)) == ref_solver["nst"] - cut_nst and int(own.group(1)) > 0,
+                f"the restarted process took the {ref_solver['nst'] - cut_nst} steps after "
+                f"the checkpoint ({own.group(0) if own else 'no step count printed'})")
 
     # The default log-spaced scene: restart from the checkpoint before the last one.
     full = f"{w}/full.h5"
@@ -174,6 +184,23 @@ def main():
     c.check(not diffs and rows(grown2) == rows(grown),
             f"growth model restarted from snapshot {k} of {rows(grown) - 1}: identical "
             f"{diffs if diffs else ''}")
+    # ... and a run of it cut at a snapshot, then continued to the end: /timeseries and
+    # /summary as well as /snapshots equal the uninterrupted run's
+    g_times = [float(t) for t in np.geomspace(10.0, 1e3, 8)]
+    g_sets = ["grid.n_cells=40", "output.t_first_yr=10.0"]
+    g_full = f"{w}/growth_times.h5"
+    panoptic(args.exe, FIDUCIAL, "-o", g_full, "--overwrite", sets=g_sets + times_set(g_times))
+    g_cut = f"{w}/growth_cut.h5"
+    panoptic(args.exe, FIDUCIAL, "-o", g_cut, "--overwrite",
+             sets=g_sets + times_set(g_times[:5]))
+    panoptic(args.exe, FIDUCIAL, "--restart", checkpoint_of(g_cut),
+             sets=g_sets + times_set(g_times))
+    diffs = snapshot_differences(g_full, g_cut, MID_RUN_GROUPS)
+    with h5py.File(g_full, "r") as f:
+        n_series = len(f["timeseries/time"])
+    c.check(not diffs and rows(g_cut) == rows(g_full),
+            f"growth model cut at snapshot 4 and continued: /snapshots, /timeseries "
+            f"({n_series} rows), /summary identical {diffs if diffs else ''}")
     c.finish()
 
 

@@ -9,10 +9,11 @@ import os
 import shutil
 import stat
 
+import h5py
 import numpy as np
 
 from common import Checks, parse_args
-from scan_common import run_id, run_summary, scan, summary, write_scan
+from scan_common import run_id, run_summary, run_summary_units, scan, summary, text, write_scan
 
 WRAPPER = """#!/bin/sh
 # a panoptic that crashes for two runs of the scan
@@ -49,6 +50,14 @@ def main():
     c.check(all(np.array_equal(s[f"outcome/{k}"][0], v, equal_nan=True) for k, v in own.items()),
             "the completed run's outcome is in the table")
     c.check(all(np.isnan(s["outcome/m_dust_final"][1:])), "no outcome for the failed runs")
+    with h5py.File(f"{out}/summary.h5", "r") as f:
+        units = {k: text(ds.attrs["units"]) for k, ds in f["outcome"].items()}
+    own_units = {k: v for k, v in run_summary_units(f"{out}/runs/run_00000.h5").items()
+                 if k in units}
+    c.check(units["m_pl_coag"] == "M_earth" and units["t_first_pl_min"] == "yr" and
+            units["r_max_pl_coag"] == "au" and
+            all(units[k] == u for k, u in own_units.items()) and len(own_units) >= 9,
+            f"/outcome/* carry the runs' /summary units ({len(own_units)} compared)")
     with open(f"{out}/summary.csv") as f:
         rows = f.read().splitlines()
     c.check(len(rows) == 5 and rows[2].split(",")[4] == "failed" and "max_steps" in rows[2],

@@ -122,6 +122,17 @@ def main():
             f"SIGTERM: exit {proc.returncode}, interrupted: {stopped}")
     c.check(all(os.path.exists(f"{out2}/runs/{n}.chk.h5") for n in stopped),
             "the interrupted runs are checkpointed")
+    # 4 runs on 2 workers stopped early: those not started have no exit code (NaN in
+    # summary.h5, an empty field in summary.csv), not 0, which means success
+    not_run = s2["runs/status"] == "not run"
+    with open(f"{out2}/summary.csv") as f:
+        rows = [r.split(",") for r in f.read().splitlines()]
+    col = rows[0].index("exit_code")
+    c.check(not_run.any() and np.all(np.isnan(s2["runs/exit_code"][not_run])) and
+            all(rows[1 + i][col] == "" for i in np.flatnonzero(not_run)) and
+            all(s2["runs/exit_code"][s2["runs/status"] == "interrupted"] == 75),
+            f"exit codes: not run NaN, interrupted 75: "
+            f"{list(zip(s2['runs/status'], s2['runs/exit_code']))}")
     p = scan(args.exe, sf2, out2, "-j", "2")
     s2 = summary(out2)
     ok = (s2["runs/status"] == "completed").all()

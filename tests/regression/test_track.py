@@ -1,7 +1,11 @@
 """`panoptic track` against the Lagrangian reference tracks of spec §13: a monomer
 released at r0 grows (no erosion, MMSN, alpha = 1e-3, eps = 0.5, s_hs = -0.58, rho0 = 1.4,
 Sigma_d = 0.01 Sigma_g) until a = 1 km; where and when must agree with the spec's numbers
-(computed independently of this code) to 5%, at the nominal and at 0.3x growth rate."""
+(computed independently of this code) to within their rounding (half a unit of the last
+digit they quote: 0.05 au, and 0.05 in the mantissa of t, i.e. 0.4-3.8 % of the values) plus
+0.5 % for the integration, at the nominal and at 0.3x growth rate. (The issue asks for
+10 %; measured at most 0.83 % in r and 1.77 % in t.)"""
+import math
 import re
 import subprocess
 
@@ -26,8 +30,12 @@ def main():
             continue
         t, r = float(m.group(1)), float(m.group(2))
         print(f"{r0:4d} {f:6.1f} {r_spec:7.2f} {r:7.2f} {t_spec:9.3g} {t:9.3g}")
-        c.check(abs(r / r_spec - 1) < 0.05 and abs(t / t_spec - 1) < 0.05,
-                f"r0 = {r0} au, f_grow = {f}: r and t within 5% of spec §13")
+        tol_r = 0.05 / r_spec + 0.005
+        tol_t = 0.05 * 10 ** math.floor(math.log10(t_spec)) / t_spec + 0.005
+        c.check(abs(r / r_spec - 1) < tol_r and abs(t / t_spec - 1) < tol_t,
+                f"r0 = {r0} au, f_grow = {f}: r {100 * (r / r_spec - 1):+.2f} % (< "
+                f"{100 * tol_r:.1f} %), t {100 * (t / t_spec - 1):+.2f} % (< {100 * tol_t:.1f} %) "
+                f"of spec §13")
     c.finish()
 
 

@@ -369,7 +369,9 @@ TEST(CheckpointRestart, DurationsForMaxWall) {
   EXPECT_DOUBLE_EQ(parse_duration("1.5h"), 5400.0);
   EXPECT_DOUBLE_EQ(parse_duration("1d2h"), 93600.0);
   EXPECT_DOUBLE_EQ(parse_duration("45"), 45.0);
-  for (const char* bad : {"", "h", "abc", "1h30", "-5m", "0", "0s", "90 m", "2x"})
+  EXPECT_DOUBLE_EQ(parse_duration("1d2h3m4s"), 93784.0);
+  for (const char* bad : {"", "h", "abc", "1h30", "-5m", "0", "0s", "90 m", "2x",
+                          "90m30m", "30m1h", "1h1h"})
     EXPECT_THROW(parse_duration(bad), ConfigError) << "'" << bad << "'";
 }
 

@@ -652,7 +652,9 @@ TEST(GrowthCompactionFloor, SpecDerivedMagnitudes) {
   // Spec §4.4 [D] (5 AU MMSN, ice), "approximately": phi_gas ~ 1e-4 at m = 1e4 g, ~1e-3
   // at 1e10 g; phi_grav ~ 1e-2 at 1e15 g and 0.16 at 1e18 g. The floor is recovered from
   // the push at phi = floor/2 (z = ln 2: softplus_100 = z exactly) with St of the
-  // self-consistent state phi = phi_gas(m, St(m, phi)) (python fixed point).
+  // self-consistent state phi = phi_gas(m, St(m, phi)) (python fixed point) for the
+  // phi_gas rows; the phi_grav rows pass St of another state (the fixed point of
+  // phi_gas), which phi_grav does not depend on (§4.3: no St in it).
   // Spec inconsistency (see report): §4.4 also quotes phi_gas ~ 1e-2 at 1e18 g, but its
   // own §4.3 formula gives 2.80e-4 there (C_D = 0.44: phi_gas^3 = 1.32 m0 rho_g (eta
   // v_K)^2 / (8 pi E_roll rho0), independent of m); checked against the formula only.

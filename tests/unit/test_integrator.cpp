@@ -60,7 +60,8 @@ TEST(Integrator, LinearDecayOverTwelveDecades) {
     const double t = 5.0 / k;  // e^-5
     cvode.advance_to(t);
     EXPECT_DOUBLE_EQ(cvode.time(), t);
-    EXPECT_NEAR(cvode.state()[0], std::exp(-5.0), 1e-7) << "k = " << k;
+    // measured 4.8e-11 for every k (rtol 1e-10 over 5 e-folds)
+    EXPECT_NEAR(cvode.state()[0], std::exp(-5.0), 1e-9) << "k = " << k;
     EXPECT_GT(cvode.stats().nje, 0) << "the analytic Jacobian was never used";
   }
 }
@@ -105,8 +106,9 @@ TEST(Integrator, StiffRobertsonWithKlu) {
   // prints 5.2083e-08, 2.0833e-13).
   const auto y = cvode.state();
   const double y1 = 1.0 / (4.8e-4 * 4e10);
-  EXPECT_NEAR(y[0] / y1, 1.0, 5e-3);
-  EXPECT_NEAR(y[1] / (4e-6 * y1), 1.0, 5e-3);
+  // measured 6.0e-5 off for both (the asymptotic form's own error is of that order)
+  EXPECT_NEAR(y[0] / y1, 1.0, 5e-4);
+  EXPECT_NEAR(y[1] / (4e-6 * y1), 1.0, 5e-4);
   EXPECT_NEAR(y[0] + y[1] + y[2], 1.0, 1e-12);  // linear invariant kept by BDF
   EXPECT_LT(cvode.stats().nst, 2000);
 }

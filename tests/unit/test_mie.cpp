@@ -16,6 +16,7 @@ namespace {
 using panoptic::physics::bruggeman;
 using panoptic::physics::disk_averaged_reflectance;
 using panoptic::physics::geometric_optics;
+using panoptic::physics::kappa_abs;
 using panoptic::physics::maxwell_garnett;
 using panoptic::physics::mie_series;
 using panoptic::physics::porous_index;
@@ -117,6 +118,34 @@ TEST(EffectiveMedium, MaxwellGarnettLimits) {
   const cplx mp = porous_index(m, 1e-4);
   EXPECT_NEAR(mp.real(), 1.0, 1e-3);
   EXPECT_GT(mp.imag(), 0.0);
+}
+
+TEST(EffectiveMedium, PorousAggregateIsSolidInAVacuumMatrix) {
+  // Kataoka et al. 2014 eq. 3 (vacuum the matrix): (e - 1)/(e + 2) = phi (e_s - 1)/(e_s
+  // + 2), solved by hand for e: e = (1 + 2 phi K)/(1 - phi K), K = (e_s - 1)/(e_s + 2).
+  // At phi = 1e-3, m = 2.118 + 0.0127i (an ice-silicate mix at 1.3 mm): e = 1.0016133 +
+  // 1.1522e-5 i (an independent evaluation; the solid-matrix form gives 1.0025835 +
+  // 3.6768e-5 i).
+  const cplx ms(2.118, 0.0127);
+  const cplx es = ms * ms, K = (es - 1.0) / (es + 2.0);
+  for (const double phi : {1e-5, 1e-3, 0.1, 0.5}) {
+    const cplx e = porous_index(ms, phi) * porous_index(ms, phi);
+    const cplx by_hand = (1.0 + 2.0 * phi * K) / (1.0 - phi * K);
+    EXPECT_LT(std::abs(e - by_hand), 1e-14) << "phi = " << phi;
+  }
+  const cplx e3 = porous_index(ms, 1e-3) * porous_index(ms, 1e-3);
+  EXPECT_NEAR(e3.real(), 1.0016133, 1e-7);
+  EXPECT_NEAR(e3.imag(), 1.1522e-5, 1e-9);
+  // Rayleigh limit (x << 1): the absorption per gram of an aggregate equals that of its
+  // solid, kappa = (6 pi / (lambda rho_s)) Im K (Bohren & Huffman 1983 eq. 5.11, Q_abs =
+  // 4x Im K), whatever phi; the solid-matrix form was 3.2x higher at phi = 1e-3.
+  const double lambda = 0.13, rho_s = 1.4, a_solid = 1e-5;
+  const double kappa_solid = 6.0 * 3.14159265358979323846 / (lambda * rho_s) * K.imag();
+  for (const double phi : {1.0, 1e-2, 1e-3}) {
+    const double a = a_solid / std::cbrt(phi);  // the same mass, x = 2 pi a/lambda < 5e-3
+    const double kappa = kappa_abs(porous_index(ms, phi), a, phi * rho_s, lambda);
+    EXPECT_NEAR(kappa / kappa_solid, 1.0, 2e-3) << "phi = " << phi;
+  }
 }
 
 TEST(EffectiveMedium, BruggemanSolvesItsEquation) {
