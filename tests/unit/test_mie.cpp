@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <complex>
+#include <cstdio>
 
 #include "physics/mie.hpp"
 #include "physics/optical_constants.hpp"
@@ -19,6 +20,7 @@ using panoptic::physics::geometric_optics;
 using panoptic::physics::kappa_abs;
 using panoptic::physics::maxwell_garnett;
 using panoptic::physics::mie_series;
+using panoptic::physics::OpticalTable;
 using panoptic::physics::porous_index;
 using cplx = std::complex<double>;
 constexpr double kPi = 3.14159265358979323846;
@@ -102,6 +104,39 @@ TEST(Mie, GeometricLimit) {
   // opaque limit: q_abs = 1 - R
   EXPECT_NEAR(geometric_optics({1.5, 0.1}, 1e6).q_abs,
               1.0 - disk_averaged_reflectance({1.5, 0.1}), 1e-10);  // ADT: 1 - 2/w^2
+}
+
+// OpticalTable::at between two rows of the default ice table (src/scene_keys.cpp,
+// observe.ice_*: 0.5 mm: n = 1.7908, k = 1.405e-2; 1.3 mm: n = 1.7868, k = 5.173e-3): n
+// linear and k linear in log in ln lambda, t = ln(lambda/0.5)/ln(1.3/0.5). By hand
+// (mpmath, 30 digits): 0.87 mm: t = 0.57967397, n = 1.7884813041178778, k =
+// 7.8729259906341079e-3; 1 mm: t = 0.72542007, n = 1.787898319714883, k =
+// 6.8060009106235024e-3. At a row the row itself. Measured differences <= 2e-16 (n),
+// 1e-15 relative (k); tolerances 1e-14 and 1e-13.
+TEST(OpticalConstants, TableInterpolatesBetweenRows) {
+  const OpticalTable ice("ice", {0.3, 0.5, 1.3, 5.0, 19.0},
+                         {1.7989, 1.7908, 1.7868, 1.7861, 1.7861},
+                         {2.549e-2, 1.405e-2, 5.173e-3, 1.337e-3, 3.574e-4});
+  const cplx a = ice.at(0.87), b = ice.at(1.0), c = ice.at(1.3);
+  EXPECT_NEAR(a.real(), 1.7884813041178778, 1e-14);
+  EXPECT_NEAR(a.imag() / 7.8729259906341079e-3, 1.0, 1e-13);
+  EXPECT_NEAR(b.real(), 1.787898319714883, 1e-14);
+  EXPECT_NEAR(b.imag() / 6.8060009106235024e-3, 1.0, 1e-13);
+  EXPECT_NEAR(c.real(), 1.7868, 1e-15);
+  EXPECT_NEAR(c.imag() / 5.173e-3, 1.0, 1e-14);
+}
+
+// kappa_abs = 3 Q_abs/(4 a rho_int) of a small compact grain against the Rayleigh limit
+// Q_abs -> 4 x Im K, K = (m^2 - 1)/(m^2 + 2), x = 2 pi a/lambda (Bohren & Huffman 1983,
+// eq. 5.11): kappa -> 6 pi Im K/(lambda rho_int) = 18 pi Im(m^2)/(|m^2 + 2|^2 lambda
+// rho_int). Ice at 1.3 mm (m = 1.7868 + 5.173e-3 i), a = 0.1 um, lambda = 1 mm, rho_int
+// = 1.4: x = 6.28e-4, kappa = 0.27692548242215852 cm^2/g (mpmath). The first correction
+// is O(x^2), estimated 3.4e-7 relative from B&H's next term; measured 3.40e-7 (printed);
+// tolerance 2e-6.
+TEST(OpticalConstants, KappaAbsOfASmallGrainIsTheRayleighLimit) {
+  const double kappa = kappa_abs({1.7868, 5.173e-3}, 1e-5, 1.4, 0.1);
+  std::printf("kappa_abs / Rayleigh - 1 = %.2e\n", kappa / 0.27692548242215852 - 1.0);
+  EXPECT_NEAR(kappa / 0.27692548242215852, 1.0, 2e-6);
 }
 
 TEST(EffectiveMedium, MaxwellGarnettLimits) {

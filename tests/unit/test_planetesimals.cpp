@@ -4,14 +4,20 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "disk/gas_disk.hpp"
+#include "physics/contact_mechanics.hpp"
 #include "physics/planetesimals.hpp"
+#include "physics/stokes_model.hpp"
 #include "src/config.hpp"
 #include "src/simulation.hpp"
+#include "src/state_layout.hpp"
 #include "src/units.hpp"
+#include "tests/unit/mmsn_gas.hpp"
 
 using panoptic::zcrit_lim25;
 
@@ -76,3 +82,128 @@ TEST(Planetesimals, S18RateIsZetaSigmaStOmegaTimesTheTrigger) {
   }
   EXPECT_GT(checked, 0) << "no cell where the channel is on: the check saw nothing";
 }
+
+// The direct-coagulation channel (spec §7.1) and the d16 trigger (spec §7.2; Drazkowska
+// et al. 2016) of Planetesimals::cell_rates_with (physics/planetesimals_cell_rates.hpp),
+// on one cell at 5 au of the MMSN gas of spec §1 (tests/unit/mmsn_gas.hpp, written out
+// from the spec formulas), with the Stokes number prescribed so that the switches can be
+// put exactly at their midpoints. The smooth steps are logistic in ln x (spec §6.4):
+// step(x; x0) = 1/(1 + (x0/x)^k), k = ln 19/(w ln 10), w = 0.1 dex: by hand, 1/2 at
+// x = x0, 19/20 = 0.95 at x0 10^w, 1/20 at x0 10^-w, and 1/(1 + 19^-10) = 1 - 1.6e-13 at
+// 10 x0 (1 dex = 10 w).
+namespace panoptic {
+namespace {
+
+struct OneCell {
+  physics::LocalGas gas = physics::mmsn_gas(5.0);
+  GasColumn column;  // static gas
+  std::vector<physics::Species> species;
+  ParticleCodec codec;
+  StateLayout layout{1};
+  std::unique_ptr<CellGas> cell_gas;
+  std::unique_ptr<PrescribedStokes> stokes;
+  std::unique_ptr<Planetesimals> pl;
+  physics::GrowthOptions growth;  // defaults: no erosion or fragmentation
+
+  OneCell(double st, PlanetesimalOptions opt) {
+    const auto c = physics::contact_properties(physics::ice_material());
+    physics::Species sp;
+    sp.a0 = physics::ice_material().a0;
+    sp.rho0 = physics::ice_material().rho0;
+    sp.m0 = c.m0;
+    sp.e_roll = c.e_roll;
+    species.push_back(sp);
+    column.static_sigma = {gas.sigma_g};
+    cell_gas = std::make_unique<CellGas>(std::vector<physics::LocalGas>{gas}, column);
+    stokes = std::make_unique<PrescribedStokes>(std::vector<double>{st});
+    codec.sigma_slot = layout.add_cell_var({"sigma_d", "g cm^-2", "dust", 1.0, false});
+    codec.qm_slot = layout.add_cell_var({"q_m", "g cm^-2", "Q_m", 1.0, false});
+    codec.qphi_slot = layout.add_cell_var({"q_phi", "g cm^-2", "Q_phi", 1.0, false});
+    codec.m_ref = sp.m0;
+    codec.x_lo = {0.0};
+    pl = std::make_unique<Planetesimals>(layout, codec, *cell_gas, *stokes, species,
+                                         growth, opt, 1.0);
+    layout.freeze();
+  }
+  // {coagulation, SI} rates for Sigma_d and particles of mass m, filling factor phi
+  std::pair<double, double> rates(double sigma_d, double m, double phi) const {
+    std::vector<double> y(layout.size(), 0.0);
+    y[layout.index(0, codec.sigma_slot)] = sigma_d;
+    y[layout.index(0, codec.qm_slot)] = sigma_d * std::log(m / codec.m_ref);
+    y[layout.index(0, codec.qphi_slot)] = sigma_d * std::log(1.0 / phi);
+    return pl->rates(0, y);
+  }
+};
+
+}  // namespace
+
+// spec §7.1: Sdot = Sigma_d/tau_pl W(St/St_pl) [dm/dt > 0], tau_pl = 10/Omega_K,
+// St_pl = 10. Particles of m = 1e12 g, phi = 1e-2, Sigma_d = 1.5 g cm^-2, still growing
+// (checked: 1e9 dlnm/dt/Omega > 20, where the code's growth switch tanh is 1 to
+// round-off). Expected Sigma_d Omega/10 x (1/2, 0.95, 0.05, 1), Omega from spec §1.3.
+// Measured relative error <= 7e-16 (against 1 in saturation instead of 1/(1 + 19^-10):
+// 1.6e-13, so the test sees the logistic's tail); tolerance 1e-12.
+TEST(Planetesimals, DirectCoagulationAtItsSwitchMidpointAndInSaturation) {
+  PlanetesimalOptions opt;
+  opt.coagulation = true;
+  opt.si = StreamingInstability::kNone;
+  const double sigma_d = 1.5, m = 1e12, phi = 1e-2;
+  const double omega = physics::mmsn_gas(5.0).omega_k;
+  const double saturated = 1.0 / (1.0 + std::pow(19.0, -10.0));  // 1 dex past x0
+  struct Case {
+    double st, step;
+  };
+  const Case cases[] = {{10.0, 0.5},
+                        {10.0 * std::pow(10.0, 0.1), 0.95},
+                        {10.0 * std::pow(10.0, -0.1), 0.05},
+                        {100.0, saturated}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE("St = " + std::to_string(c.st));
+    OneCell cell(c.st, opt);
+    const auto rates = physics::particle_rates(sigma_d, m, phi, c.st, cell.gas,
+                                               cell.species[0], cell.growth);
+    ASSERT_GT(1e9 / omega * rates.dlnm_dt, 20.0);  // growing: the tanh switch is 1
+    const auto [coag, si] = cell.rates(sigma_d, m, phi);
+    EXPECT_NEAR(coag / (sigma_d * omega / 10.0 * c.step), 1.0, 1e-12);
+    EXPECT_EQ(si, 0.0);
+  }
+}
+
+// spec §7.2, d16: Sdot = zeta Sigma_d Omega, zeta = 0.01, where the midplane
+// rho_d/rho_g >= 1 counting particles with St >= 0.01, both thresholds smooth steps:
+// Sdot = zeta Sigma_d Omega step(eps_mid; 1) step(St; 0.01). eps_mid = Sigma_d H/(Sigma_g
+// h_d) (spec §1.3, §2: the sqrt(2 pi) cancel), h_d of Youdin & Lithwick 2007 (spec §2)
+// written out here; Sigma_d is chosen to put eps_mid at 1, 10^0.1, 10^-0.1 or 10.
+// Expected factors by hand: 1/4 (both at the midpoint), 0.95^2 = 0.9025, 1/2 (St at its
+// midpoint, eps saturated), 0.05 (eps 0.1 dex low, St saturated), 1 (both saturated),
+// each saturated step being 1/(1 + 19^-10). Measured relative error <= 2.2e-16 (3.3e-13
+// if the saturated steps are taken as 1); tolerance 1e-12.
+TEST(Planetesimals, D16TriggerAtItsSwitchMidpointsAndInSaturation) {
+  PlanetesimalOptions opt;
+  opt.coagulation = false;
+  opt.si = StreamingInstability::kD16;  // zeta 0.01, St_si_min 0.01, eps_crit 1
+  const physics::LocalGas g = physics::mmsn_gas(5.0);
+  struct Case {
+    double st, eps_mid, factor;
+  };
+  const double up = std::pow(10.0, 0.1);
+  const double saturated = 1.0 / (1.0 + std::pow(19.0, -10.0));  // 1 dex past x0
+  const Case cases[] = {{0.01, 1.0, 0.25},
+                        {0.01 * up, up, 0.9025},
+                        {0.01, 10.0, 0.5 * saturated},
+                        {0.1, 1.0 / up, 0.05 * saturated},
+                        {0.1, 10.0, saturated * saturated}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE("St = " + std::to_string(c.st) +
+                 ", eps_mid = " + std::to_string(c.eps_mid));
+    OneCell cell(c.st, opt);
+    const double h_d =
+        g.h_g / std::sqrt(1.0 + c.st / g.alpha * (1.0 + 2.0 * c.st) / (1.0 + c.st));
+    const double sigma_d = c.eps_mid * g.sigma_g * h_d / g.h_g;
+    const auto [coag, si] = cell.rates(sigma_d, 1.0, 1e-3);
+    EXPECT_NEAR(si / (0.01 * sigma_d * g.omega_k * c.factor), 1.0, 1e-12);
+    EXPECT_EQ(coag, 0.0);
+  }
+}
+
+}  // namespace panoptic

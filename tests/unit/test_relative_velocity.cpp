@@ -85,6 +85,26 @@ TEST_F(RelVelMmsn5au, DriftComponentsLimits) {
       1e-12);
 }
 
+// spec §3.2 (and §6.1): v_r = (-2 St eta v_K + v_g)/(1 + St^2) with the gas moving,
+// v_r,gas = -500 cm/s. eta v_K = 5385.4804222618910 cm/s at 5 au (mpmath, 30 digits, from
+// the spec §1.3-1.4 formulas, dlnP/dlnr = -3.25); v_r(St = 0.5) = (-5385.48 - 500)/1.25 =
+// -4708.3843378095128, v_r(St = 2) = (-4 x 5385.48 - 500)/5 = -4408.3843378095128 cm/s.
+// St and 1/St drift alike (St/(1 + St^2) = 0.4 for both), so their radial relative speed
+// is the gas term alone, by hand: 500 (1/1.25 - 1/5) = 300 cm/s, 9e4 cm^2 s^-2 (0 without
+// gas motion). Measured relative errors 2.2e-16 (v_r), 0 for dv2 (it is the square of
+// the difference of two 4.5e3 cm/s speeds: up to ~1e-12 could be lost); tolerances 1e-13,
+// 1e-10.
+TEST_F(RelVelMmsn5au, RadialDriftWithMovingGas) {
+  LocalGas moving = gas;
+  moving.v_r_gas = -500.0;
+  EXPECT_LT(rel_err(v_radial_drift(0.5, moving), -4708.3843378095128), 1e-13);
+  EXPECT_LT(rel_err(v_radial_drift(2.0, moving), -4408.3843378095128), 1e-13);
+  EXPECT_LT(rel_err(dv2_radial(0.5, 2.0, moving), 9e4), 1e-10);
+  EXPECT_NEAR(dv2_radial(0.5, 2.0, gas), 0.0, 1e-6);
+  // a particle tied to the gas moves with it
+  EXPECT_LT(rel_err(v_radial_drift(1e-9, moving), -500.0), 1e-7);
+}
+
 TEST_F(RelVelMmsn5au, TurbulentRegimes) {
   // python: pure OC07 eqs. 27-29 (the blend weights are < 1e-12 off the boundaries here)
   EXPECT_LT(rel_err(dv2_turbulent(1e-6, 5e-7, gas), 0.006828090772562611),
