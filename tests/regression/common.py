@@ -84,3 +84,22 @@ class Checks:
 
 
 __all__ = ["parse_args", "run", "Checks", "load_run", "REPO"]
+
+
+# The constants of spec §1.1, copied from the spec (not read from src/units.hpp)
+SPEC_G, SPEC_MSUN, SPEC_AU = 6.674e-8, 1.989e33, 1.496e13
+SPEC_KB, SPEC_MH = 1.3807e-16, 1.6735e-24
+
+
+def alpha_cs_h(config, r_au):
+    """nu = alpha c_s H [cm^2 s^-1] of the scene's power-law temperature (spec §1.3, §1.5):
+    T = T_1au L^(1/4) r^-q (above disk.T_floor), c_s^2 = k_B T/(mu m_H), H = c_s/Omega_K,
+    worked out from the scene's keys and the spec's constants, not from the run's /disk
+    fields, so that a factor wrong in the code's c_s or H does not move the reference."""
+    d, s = config["disk"], config["star"]
+    r_au = np.asarray(r_au, dtype=float)
+    temp = np.maximum(d["T_1au"] * s["luminosity_lsun"] ** 0.25 * r_au ** -d["q"],
+                      d["T_floor"])
+    cs2 = SPEC_KB * temp / (d["mu"] * SPEC_MH)
+    omega = np.sqrt(SPEC_G * s["mass_msun"] * SPEC_MSUN / (r_au * SPEC_AU) ** 3)
+    return d["alpha"] * cs2 / omega

@@ -6,7 +6,7 @@ run 10x longer, the ring spreads as the St = 1e-8 one does (D_g/(1 + St) would s
 2.5x further)."""
 import numpy as np
 
-from common import Checks, load_run, parse_args, run
+from common import Checks, alpha_cs_h, load_run, parse_args, run
 from postprocess.analytic import ring_diffusion
 
 AU = 1.496e13
@@ -17,7 +17,8 @@ def l1_error(path):
     r = load_run(path)
     st = r.config["transport"]["St"]
     # D_d = alpha c_s H / (1 + St^2) (spec §6.1; Youdin & Lithwick 2007)
-    D = float(r.disk["alpha"][0] * r.disk["c_s"][0] * r.disk["h_g"][0]) / (1 + st * st)
+    # (alpha c_s H from the scene: with q = 3/2 it is the same at every r)
+    D = float(alpha_cs_h(r.config, 1.0)) / (1 + st * st)
     # the initial profile is the ring solution at t0 with 2 D t0 = w^2
     cfg = r.config["dust"]
     r0, w = cfg["ring_r_au"] * AU, cfg["ring_width_au"] * AU
