@@ -9,7 +9,8 @@ reads DIR/summary.h5 (written by `panoptic scan ... -o DIR`) and writes into OUT
   - two axes: map_<outcome>.png per outcome: a colour map over the two axes when the runs
     form a full grid (sampling = "grid"), else a scatter coloured by the outcome
     (Latin-hypercube scans).
-Axes of log spacing get log scales; positive outcomes that span more than two decades get
+Axes of log spacing (and lists of positive numbers that span more than two decades) get
+log scales; positive outcomes that span more than two decades get
 a logarithmic colour scale (values more than 1e6 below the largest get its lowest colour).
 Runs that did not complete are drawn as black crosses. Outcomes (default: those present
 of m_pl_coag, m_pl_si, m_peb_snowline, m_peb_r_in, m_dust_final, t_first_pl_min) are the
@@ -45,8 +46,11 @@ def load_summary(scan_dir):
         axes = {}
         for k in _str(f.attrs["axes"]).split(","):
             ds = f["axes"][k]
-            sp = ds.attrs.get("spacing", "list")
-            axes[k] = (ds[()] if ds.dtype.kind == "f" else dec(ds[()]), _str(sp))
+            sp = _str(ds.attrs.get("spacing", "list"))
+            v = ds[()] if ds.dtype.kind == "f" else dec(ds[()])
+            if sp == "list" and v.dtype.kind == "f" and np.all(v > 0) and v.max() > 100 * v.min():
+                sp = "log"  # a list of positive numbers over more than two decades
+            axes[k] = (v, sp)
         return {"status": dec(f["runs/status"][()]), "name": dec(f["runs/name"][()]),
                 "axes": axes, "sampling": _str(f.attrs["sampling"]),
                 "outcome": {k: ds[()] for k, ds in f["outcome"].items()},

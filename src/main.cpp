@@ -412,15 +412,21 @@ int track(const std::string& scene, const std::vector<std::string>& overrides,
               scene.c_str(), r0_au, res.steps);
   std::printf("# %12s %10s %12s %12s %12s %12s\n", "t [yr]", "r [au]", "m [g]", "phi",
               "a [cm]", "St");
-  // about 40 rows, log-spaced in time
-  double next = 0.0;
-  for (std::size_t k = 0; k < res.points.size(); ++k) {
-    const TrackPoint& p = res.points[k];
-    if (p.t < next && k + 1 != res.points.size()) continue;
+  // about 40 rows, log-spaced in time; the last the stop itself (interpolated to
+  // a = a_stop) when the particle got there, not the step that went past it
+  const auto row = [](const TrackPoint& p) {
     std::printf("  %12.5g %10.4g %12.5g %12.5g %12.5g %12.5g\n", p.t / units::kYr,
                 p.r / units::kAu, p.m, p.phi, p.a, p.St);
+  };
+  const std::size_t n_rows = res.points.size() - (res.reached ? 1 : 0);
+  double next = 0.0;
+  for (std::size_t k = 0; k < n_rows; ++k) {
+    const TrackPoint& p = res.points[k];
+    if (p.t < next && (res.reached || k + 1 != n_rows)) continue;
+    row(p);
     next = std::max(p.t * 1.25, 1.0 * units::kYr);
   }
+  if (res.reached) row(res.at_stop);
   if (res.reached)
     std::printf("reached a = %.4g cm at t = %.4g yr, r = %.4g au\n", a_stop_cm,
                 res.at_stop.t / units::kYr, res.at_stop.r / units::kAu);

@@ -149,6 +149,12 @@ TrackResult track_particle(const Config& cfg, double r0, double a_stop, double t
     out.at_stop.t = prev.t + w * (last.t - prev.t);
     out.at_stop.r = prev.r + w * (last.r - prev.r);
     out.at_stop.a = a_stop;
+    const auto log_interp = [w](double x0, double x1) {
+      return x0 > 0.0 && x1 > 0.0 ? x0 * std::exp(w * std::log(x1 / x0)) : x1;
+    };
+    out.at_stop.m = log_interp(prev.m, last.m);
+    out.at_stop.phi = log_interp(prev.phi, last.phi);
+    out.at_stop.St = log_interp(prev.St, last.St);
   }
   return out;
 }
