@@ -100,8 +100,8 @@ struct RunArgs {
   bool overwrite = false;
   std::string restart;   //!< --restart CHK.h5
   std::string max_wall;  //!< --max-wall DURATION
-  bool max_wall_given =
-      false;           //!< so that `--max-wall ""` (an unset variable) is refused
+  //! --max-wall was given, so that `--max-wall ""` (an unset variable) is refused
+  bool max_wall_given = false;
   std::string preset;  //!< --fast / --accurate: "fast", "accurate" or ""
 };
 
