@@ -6,13 +6,14 @@ import os
 import shlex
 import signal
 import subprocess
+import threading
 import time
 
 import numpy as np
 
 from common import REPO, Checks, parse_args
-from restart_common import (EXIT_STOPPED, checkpoint_attrs, checkpoint_of, panoptic, rows,
-                            snapshot_differences, solver_attrs, times)
+from restart_common import (EXIT_STOPPED, checkpoint_attrs, checkpoint_of, copy_run, panoptic,
+                            rows, snapshot_differences, solver_attrs, times)
 
 SCENE = "params/tests/restart.toml"
 # Compared bit for bit with the uninterrupted run (a restart continues all three).
@@ -106,6 +107,33 @@ def main():
     took = time.time() - t0
     c.check(took < limit + 1.0, f"--max-wall {limit:.2f}s: stopped after {took:.2f} s")
     check_stopped_run(c, "--max-wall", proc, out, ref)
+
+    # SIGTERM while a restart still sets up (it copies the 16 MB output first, ~0.8 s
+    # here): the handlers are in place from the start of `panoptic run`, so the run
+    # stops at its first step with the checkpoint and exit 75 (it was killed with 143)
+    setup = f"{w}/setup.h5"
+    copy_run(ref, setup, files=("output", "chk"))
+    cmd = [args.exe, "run", os.path.join(REPO, SCENE), "--restart", checkpoint_of(setup)]
+    for s in SETS[:-1] + ["output.t_end_yr=2e7"]:
+        cmd += ["--set", s]
+    t0 = time.time()
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    header = []  # when the header, printed once the set-up is done, came
+    reader = threading.Thread(target=lambda: header.extend(
+        (time.time() - t0, ln) for ln in proc.stdout))
+    reader.start()
+    time.sleep(0.25)
+    proc.send_signal(signal.SIGTERM)
+    proc.wait()
+    reader.join()
+    t_header = next((t for t, ln in header if ln.startswith("panoptic ")), None)
+    when = ("during its set-up, which never ended: killed" if t_header is None else
+            f"during its set-up, which ended at {t_header:.2f} s" if t_header > 0.25 else
+            "after its set-up: inconclusive")
+    c.check(proc.returncode == EXIT_STOPPED and rows(setup) == rows(ref) and
+            checkpoint_attrs(checkpoint_of(setup))["snapshot_index"] == rows(ref) - 1,
+            f"SIGTERM 0.25 s into a restart ({when}): exit {proc.returncode}, output and "
+            f"checkpoint as before")
 
     p = panoptic(args.exe, SCENE, "-o", f"{w}/bad.h5", "--overwrite", "--max-wall", "90x",
                  sets=SETS, expect=2)
