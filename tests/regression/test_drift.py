@@ -1,7 +1,7 @@
 """Radial drift (spec §6.1, §6.3) where the drift speed is uniform (see params/tests/drift.toml):
 0. the drift speed on every face against the closed form -2 St eta v_K / (1 + St^2)
    (postprocess.analytic.drift_velocity), with eta v_K of the power-law disk worked out
-   here from the scene's p, q, T_1au, mu and M_star with CODATA/IAU constants;
+   here from the scene's p, q, T_1au, mu and M_star with the constants of spec §1.1;
 1. steady drift flux: Sigma_d = Z Sigma_g ∝ 1/r stays steady inside the region the closed
    outer edge has not yet reached, and the mass flow through r_in equals 2 pi r Sigma v_r
    of cell 0 (the upwind flux of the steady state: exact on the log grid, to the

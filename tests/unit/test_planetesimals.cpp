@@ -40,9 +40,11 @@ TEST(Planetesimals, ZcritMinimumIsLiYoudinsOptimum) {
 // Omega where the midplane rho_d/rho_g >= eps_crit, switched by a logistic in ln(rho_d/
 // rho_g) of half-width width_dex. Checked on the grid against the formula written out
 // here from spec §1.3 (Omega, c_s, H, rho_g of the MMSN) and §2 (h_d of Youdin &
-// Lithwick 2007), with particles grown to St ~ 0.1 and Sigma_d = 0.5 Sigma_g, where the
-// trigger is nearly saturated; only St is taken from the code (its drag law has its own
-// tests).
+// Lithwick 2007), with particles grown to St ~ 0.13-0.22, and Sigma_d set in each cell so
+// that rho_d/rho_g runs from 10^-0.15 to 10^+0.15 across the 12 cells: the trigger goes
+// from 0.012 to 0.988 through its midpoint, so that a rate without it, or with another
+// width or centre, fails. Taken from the code: St (its drag law has its own tests), and
+// T(r), Sigma_g(r) and the constants of src/units.hpp (tested in test_disk.cpp).
 TEST(Planetesimals, S18RateIsZetaSigmaStOmegaTimesTheTrigger) {
   using namespace panoptic;
   const std::vector<std::string> sets{"grid.n_cells=12",
@@ -59,28 +61,44 @@ TEST(Planetesimals, S18RateIsZetaSigmaStOmegaTimesTheTrigger) {
   const int sd = *L.find_cell_var("sigma_d"), qm = *L.find_cell_var("q_m");
   for (int i = 0; i < L.n_cells(); ++i)  // m = 1e4 g, compact enough: St ~ 0.01-1
     y[L.index(i, qm)] = y[L.index(i, sd)] * std::log(1e4 / 5.9e-15);
-  const auto st = sim.snapshot_fields(y).at("St");
+  auto st = sim.snapshot_fields(y).at("St");
   const double zeta = 0.1, eps_crit = 1.0, alpha = 1e-3, width_dex = 0.1;  // defaults
-  int checked = 0;
-  for (int i = 0; i < L.n_cells(); ++i) {
+  const double k = std::log(19.0) / (width_dex * std::log(10.0));
+  const auto h_ratio = [&](int i) {  // h_g / h_d and Omega of cell i
     const double r = sim.grid().r_c(i);
     const double omega = std::sqrt(units::kG * units::kMsun / (r * r * r));
-    const double c_s =
-        std::sqrt(units::kBoltzmann * sim.disk().temperature(r) / (2.34 * units::kMassH));
-    const double h_g = c_s / omega;
+    const double s = st[i];
+    return std::pair{std::sqrt(1.0 + s / alpha * (1.0 + 2.0 * s) / (1.0 + s)), omega};
+  };
+  // rescale each cell's dust (Sigma_d and its log-moments alike: m and phi unchanged)
+  // to rho_d/rho_g = 10^(-0.15 + 0.3 i/11)
+  for (int i = 0; i < L.n_cells(); ++i) {
+    const double sigma_g = sim.disk().sigma_g(sim.grid().r_c(i));
+    const double eps_now = y[L.index(i, sd)] / sigma_g * h_ratio(i).first;
+    const double target = std::pow(10.0, -0.15 + 0.3 * i / (L.n_cells() - 1.0));
+    for (int v = 0; v < L.n_cell_vars(); ++v) y[L.index(i, v)] *= target / eps_now;
+  }
+  // St again: the codec's floor on Sigma_d moves the decoded m by ~1e-11 relative
+  st = sim.snapshot_fields(y).at("St");
+  int on = 0, off = 0, between = 0;
+  for (int i = 0; i < L.n_cells(); ++i) {
+    const double r = sim.grid().r_c(i);
+    const auto [h_over_hd, omega] = h_ratio(i);
     const double sigma_g = sim.disk().sigma_g(r), sigma_d = y[L.index(i, sd)];
     const double s = st[i];
-    const double h_d = h_g / std::sqrt(1.0 + s / alpha * (1.0 + 2.0 * s) / (1.0 + s));
-    const double eps_mid = (sigma_d / h_d) / (sigma_g / h_g);  // the sqrt(2 pi) cancel
-    const double k = std::log(19.0) / (width_dex * std::log(10.0));
+    const double eps_mid = sigma_d / sigma_g * h_over_hd;  // the sqrt(2 pi) cancel
     const double trigger = 1.0 / (1.0 + std::pow(eps_crit / eps_mid, k));
     const double expected = zeta * sigma_d * s * omega * trigger;
     const double si = sim.planetesimals()->rates(i, y).second;
     EXPECT_NEAR(si / expected, 1.0, 1e-9)
         << "cell " << i << ", St " << s << ", eps_mid " << eps_mid;
-    if (trigger > 0.5) ++checked;
+    on += trigger > 0.9;
+    off += trigger < 0.1;
+    between += trigger > 0.2 && trigger < 0.8;
   }
-  EXPECT_GT(checked, 0) << "no cell where the channel is on: the check saw nothing";
+  EXPECT_TRUE(on > 0 && off > 0 && between >= 3)
+      << "the trigger must be seen on (" << on << " cells), off (" << off
+      << ") and on its flank (" << between << ")";
 }
 
 // The direct-coagulation channel (spec §7.1) and the d16 trigger (spec §7.2; Drazkowska
