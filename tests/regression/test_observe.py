@@ -179,6 +179,14 @@ def main():
                                            "profiles.png", "spectral_index.png"],
             f"postprocess.plot_observe: {pngs} {p.stderr.strip()}")
 
+    # 3c centimetre wavelengths (VLA): the default tables reach 99.987 mm
+    far = os.path.join(wd, "grow_obs_cm.h5")
+    observe(exe, grow, far, "--time-yr", "1000", "--lambda-mm", "7,10,30,99", "--overwrite")
+    with h5py.File(far) as f:
+        c.check(np.allclose(f["wavelength_mm"][()], [7, 10, 30, 99]) and
+                np.all(f["model/kappa_abs"][()] > 0),
+                "observe at 7, 10, 30 and 99 mm runs")
+
     # 4 bad input: exit 2, the message names the problem, nothing written
     text = os.path.join(wd, "not_a_run.h5")
     with open(text, "w") as fh:
@@ -192,6 +200,9 @@ def main():
                                            "--a-cm", "0.01"], "abc"),
         ("wavelength outside the tables", ring, ["--time-yr", "10", "--lambda-mm", "0.1",
                                                  "--a-cm", "0.01"], "optical-constant"),
+        # the silicate table ends at 99.987 mm (the ice table at 110)
+        ("beyond the silicate table", ring, ["--time-yr", "10", "--lambda-mm", "100",
+                                             "--a-cm", "0.01"], "silicate 0.29999 - 99.987"),
         ("time after the run", ring, ["--time-yr", "1e5", "--lambda-mm", "1.3",
                                       "--a-cm", "0.01"], "outside the run"),
         ("negative time", ring, ["--time-yr", "-5", "--lambda-mm", "1.3",
