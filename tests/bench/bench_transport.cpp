@@ -1,6 +1,6 @@
 // Benchmark (not a test): wall time per cell per CVODE step for dust transport alone
 // (fiducial scene, prescribed St), N = 100 to 10^4 cells, median of 5 runs each.
-// Usage: build/bench_transport [t_end_yr]   (default 1e5)
+// Usage: build/tests/bench_transport [t_end_yr]   (default 1e5)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

@@ -1,5 +1,5 @@
 """Where the CVODE steps of the fiducial scene go, and how many a scheme that stepped every
-cell on its own would need (issues 3 and 7: why the run takes ~9 000 steps). Run on
+cell on its own would need (issues 3 and 7: why the run takes ~5 700 steps). Run on
 demand, not in CI; uses build/tests/bench_fiducial.
 
 Measured, each with the scene's snapshot schedule (CVODE restarts at every snapshot):
