@@ -51,8 +51,10 @@ double GasDisk::mfp(double rho_g) const {
 double GasDisk::r_snow() const {
   // T_1 L^(1/4) (r/au)^-q = T_sub  ->  r = au (T_1 L^(1/4) / T_sub)^(1/q)
   const double t1 = th_.T_1au * std::pow(star_.luminosity / units::kLsun, 0.25);
-  if (th_.q <= 0.0 || th_.T_sub < th_.T_floor)
-    return std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  if (th_.T_floor > th_.T_sub) return inf;  // warmer than T_sub everywhere: no ice
+  if (th_.q == 0.0) return t1 > th_.T_sub ? inf : 0.0;  // one temperature everywhere
+  if (th_.q < 0.0) return std::numeric_limits<double>::quiet_NaN();  // ice inside
   return kAu * std::pow(t1 / th_.T_sub, 1.0 / th_.q);
 }
 

@@ -60,7 +60,10 @@ class GasDisk {
   double pressure(double sigma_g, double r) const;
   //! Mean free path mu m_H / (sigma_mol rho) [cm] (spec §1.6).
   double mfp(double rho_g) const;
-  //! Snow-line radius where T = T_sub [cm] (spec §1.7); NaN when T never equals T_sub.
+  //! Snow-line radius where T falls to T_sub [cm] (spec §1.7): +inf when the disk is
+  //! warmer than T_sub everywhere (T_floor > T_sub, or q = 0 and T > T_sub), 0 when it
+  //! is colder everywhere (q = 0), NaN when T rises outward (q < 0: ice inside silicate,
+  //! which the model does not describe; validate_scene refuses it with the snow line on).
   double r_snow() const;
 
  private:

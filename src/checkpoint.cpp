@@ -309,10 +309,12 @@ bool may_change_on_restart(std::string_view key) {
   // Listed one by one (not solver.* or output.*): a key added later must be judged
   // before a restart may change it, so the safe answer for an unknown key is no.
   static const std::vector<std::string_view> kKeys = {
-      "output.t_end_yr",           "output.t_first_yr", "output.n_snapshots",
-      "output.times_yr",           "output.file",       "solver.rtol",
-      "solver.atol_sigma",         "solver.max_steps",  "solver.max_dt_yr",
-      "solver.reinit_at_snapshots"};
+      "output.t_end_yr",    "output.t_first_yr",
+      "output.n_snapshots", "output.times_yr",
+      "output.file",        "solver.rtol",
+      "solver.atol_sigma",  "solver.max_steps",
+      "solver.max_dt_yr",   "solver.reinit_at_snapshots",
+      "solver.newton_coef"};
   if (key.starts_with("checkpoint.") || key.starts_with("meta.") ||
       key.starts_with("observe."))  // read by `panoptic observe` only
     return true;

@@ -236,7 +236,8 @@ std::string wanted_text(const KeySpec& spec) {
 }
 
 std::string example_value(const KeySpec& spec) {
-  if (spec.type == KeyType::kRealList && spec.default_toml == "[]") return "[1e3, 1e4]";
+  if (spec.type == KeyType::kRealList && spec.default_toml == "[]")
+    return spec.unit == "au" ? "[3.0, 30.0]" : "[1e3, 1e4]";
   return spec.default_toml;
 }
 

@@ -265,7 +265,9 @@ int observe(const ObserveArgs& a) {
     throw ConfigError(a.run_file +
                       ": the run has no particle sizes (/snapshots/a: growth was off); "
                       "give one with --a-cm");
-  const bool snowline = cfg.flag("snowline.enabled") && std::isfinite(s.r_snow_au);
+  // r_snow_au is +inf for a disk warmer than T_sub everywhere (all silicate), 0 for one
+  // colder everywhere; NaN (a run without a snow line) compares false
+  const bool snowline = cfg.flag("snowline.enabled");
   std::vector<int> inner(n);
   for (std::size_t i = 0; i < n; ++i) inner[i] = snowline && s.r_c_au[i] < s.r_snow_au;
 

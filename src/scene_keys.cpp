@@ -109,8 +109,13 @@ std::vector<KeySpec> make_keys() {
       real("disk.p", "1.5", "", "powerlaw: Sigma_g ∝ r^-p", -5.0, false, 5.0, false),
       positive("disk.m_disk_msun", "0.05", "M_sun", "lbp: total gas mass of the disk"),
       positive("disk.r_c_au", "60.0", "au", "lbp: characteristic radius r_c"),
-      real("disk.gamma", "1.0", "", "lbp: viscosity exponent gamma (nu ∝ r^gamma)", -2.0,
-           false, 2.0, true),
+      real("disk.gamma", "1.0", "",
+           "lbp: exponent gamma of the initial profile Sigma ∝ (r/r_c)^-gamma "
+           "exp(-(r/r_c)^(2 "
+           "- gamma)) (§1.2, the similarity solution for nu ∝ r^gamma; an evolving gas "
+           "uses "
+           "nu = alpha c_s H ∝ r^(3/2 - q) whatever gamma is)",
+           -2.0, false, 2.0, true),
       positive("disk.T_1au", "280.0", "K", "temperature at 1 au for L_* = L_sun (§1.3)"),
       real("disk.q", "0.5", "", "T ∝ r^-q (§1.3)", -2.0, false, 3.0, false),
       real("disk.T_floor", "10.0", "K", "temperature floor (§1.3)", 0.0, false),
@@ -131,7 +136,9 @@ std::vector<KeySpec> make_keys() {
           "the disk went on; zero_torque = nu Sigma_g r^(1/2) = 0 at r_in"),
 
       // [dust] initial condition, spec §6.4
-      positive("dust.dust_to_gas", "0.01", "", "initial Sigma_d / Sigma_g (§1.7 Z_out)"),
+      positive("dust.dust_to_gas", "0.01", "",
+               "initial Sigma_d / Sigma_g outside the snow line (§1.7 Z_out; inside it "
+               "(1 - snowline.f_ice) times this)"),
       choice(
           "dust.init", "dust_to_gas", {"dust_to_gas", "gaussian_ring"},
           "initial Sigma_d: dust_to_gas = dust_to_gas * Sigma_g; gaussian_ring = a thin "
@@ -142,17 +149,21 @@ std::vector<KeySpec> make_keys() {
       positive("dust.ring_width_au", "2.0", "au",
                "gaussian_ring: Gaussian width (standard deviation)"),
       positive("dust.ring_sigma", "1.0", "g cm^-2", "gaussian_ring: peak Sigma_d"),
-      real("dust.sigma_floor_rel", "1e-30", "", "floor of Sigma_d / Sigma_g (§6.4)", 0.0,
-           false, 1e-3, false),
+      real("dust.sigma_floor_rel", "1e-30", "",
+           "gaussian_ring: Sigma_d / Sigma_g outside the ring (§6.4; not a floor during "
+           "the run: m and phi of a nearly empty cell are decoded through a floor set by "
+           "solver.atol_sigma)",
+           0.0, false, 1e-3, false),
 
       // [transport] spec §6.1, §6.3
       flag("transport.drift", "true", "radial drift (advection by v_r, §6.1)"),
       flag("transport.diffusion", "true",
            "turbulent diffusion of Sigma_d/Sigma_g (§6.1)"),
       positive("transport.St", "0.03", "",
-               "prescribed Stokes number at 1 au (until the growth model sets it)"),
-      real("transport.St_slope", "0.0", "", "prescribed St ∝ r^St_slope", -5.0, false,
-           5.0, false),
+               "prescribed Stokes number at 1 au with growth off (growth.enabled = true "
+               "ignores it)"),
+      real("transport.St_slope", "0.0", "", "prescribed St ∝ r^St_slope (growth off)",
+           -5.0, false, 5.0, false),
       choice("transport.advection", "upwind", {"upwind", "van_leer"},
              "advection scheme of the drift: first-order upwind, or second-order upwind "
              "with a van Leer-limited reconstruction of r Sigma (MUSCL; widens the "
@@ -162,7 +173,9 @@ std::vector<KeySpec> make_keys() {
       flag("growth.enabled", "false",
            "grow the mass-dominating particle (spec §4.1); off: St is prescribed by "
            "transport.St"),
-      positive("growth.f_grow", "1.0", "", "multiplier of the growth rate (spec §4.1)"),
+      positive("growth.f_grow", "1.0", "",
+               "multiplier of the coagulation rate (spec §4.1; with erosion.model = "
+               "\"balance\" of its similar-size term only)"),
       real("growth.eps", "0.5", "",
            "size ratio of the collision partner, St2 = eps St (§3)", 0.0, true, 1.0,
            true),
@@ -172,7 +185,7 @@ std::vector<KeySpec> make_keys() {
              "only (spec §2)"),
       positive("growth.vg2_factor", "1.0", "",
                "V_g^2 = vg2_factor alpha c_s^2 in the turbulent relative velocity (spec "
-               "§3.5: 1, the Ormel & Cuzzi 2007 normalisation; alt. 1.5)"),
+               "§3, item 5: 1, the Ormel & Cuzzi 2007 normalisation; alt. 1.5)"),
       real("growth.St_max", "1e4", "",
            "soft cap of St (m stops growing there; planetesimals "
            "are converted by the planetesimal channels)",
@@ -184,8 +197,11 @@ std::vector<KeySpec> make_keys() {
            -1.0, false, 0.0, false),
       positive("porosity.b", "0.15", "",
                "compression threshold E_imp = 3 b E_roll (§4.2)"),
-      real("porosity.phi_max", "0.5", "", "largest filling factor (§4.3)", 0.0, true, 1.0,
-           false),
+      real("porosity.phi_max", "0.5", "",
+           "largest filling factor compaction raises phi to: the cap of the gas and "
+           "self-gravity floors (§4.3-§4.4); monomers start at phi = 1, which "
+           "hit-and-stick lowers, so phi <= 1 is what holds throughout",
+           0.0, true, 1.0, false),
       flag("porosity.gas_compaction", "true", "static compression by gas drag (§4.3)"),
       flag("porosity.self_gravity", "true", "static compression by self-gravity (§4.3)"),
 
@@ -263,14 +279,15 @@ std::vector<KeySpec> make_keys() {
       positive("planetesimals.St_si_min", "0.01", "",
                "d16 and zcrit: smallest St that takes part"),
       positive("planetesimals.eps_crit", "1.0", "",
-               "midplane rho_d/rho_g that triggers SI"),
+               "d16 and s18: midplane rho_d/rho_g that triggers SI (zcrit compares "
+               "Sigma_d/Sigma_g with Z_crit(St) instead)"),
 
       // [pebbles] spec §8
-      real_list(
-          "pebbles.radii_au", "au",
-          "radii where the pebble flux is recorded; empty = the snow line, 1, 3, 10, "
-          "30 au and r_in (those inside the grid)",
-          0.0),
+      real_list("pebbles.radii_au", "au",
+                "radii strictly inside the grid where the pebble flux is recorded (the "
+                "nearest face); empty = the snow line, 1, 3, 10, 30 au (those inside the "
+                "grid); the flux through r_in is always recorded",
+                0.0),
       integer("pebbles.samples_per_snapshot", "10",
               "pebble-flux samples (/timeseries) per snapshot interval", 1, 1e5),
 
@@ -288,7 +305,8 @@ std::vector<KeySpec> make_keys() {
            false),
       real("solver.atol_sigma", "1e-8", "",
            "absolute tolerance of Sigma_d and Sigma_g, relative to the initial maximum "
-           "of Sigma (so it scales with the scene)",
+           "of Sigma (so it scales with the scene); 10x it is also the Sigma_d below "
+           "which a cell's m and phi are decoded towards a monomer's",
            1e-30, false, 1.0, false),
       integer("solver.max_steps", "2000000", "limit on the total number of CVODE steps",
               1, 1e12),

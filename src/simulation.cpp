@@ -154,12 +154,19 @@ void validate_scene(const Config& cfg) {
       cfg.fail(key,
                "needs growth.enabled = true (conversion depends on the particles); "
                "turn growth on or this channel off");
+  if (cfg.flag("snowline.enabled") && cfg.real("disk.q") < 0.0)
+    cfg.fail("disk.q",
+             "< 0 makes the temperature rise outward, so ice would lie inside silicate; "
+             "the snow line of spec §1.7 needs T falling outward: set disk.q >= 0 or "
+             "snowline.enabled = false");
   for (double r : cfg.reals("pebbles.radii_au"))
-    if (r < cfg.real("grid.r_in_au") || r > cfg.real("grid.r_out_au"))
-      cfg.fail("pebbles.radii_au", "every radius must lie in [r_in_au, r_out_au] = [" +
-                                       num(cfg.real("grid.r_in_au")) + ", " +
-                                       num(cfg.real("grid.r_out_au")) +
-                                       "] [au]; remove " + num(r));
+    if (!(r > cfg.real("grid.r_in_au") && r < cfg.real("grid.r_out_au")))
+      cfg.fail("pebbles.radii_au",
+               "every radius must lie strictly inside the grid, (r_in_au, r_out_au) = (" +
+                   num(cfg.real("grid.r_in_au")) + ", " + num(cfg.real("grid.r_out_au")) +
+                   ") [au]: the flux through r_in is always recorded, and none crosses "
+                   "the closed outer edge; remove " +
+                   num(r));
   if (cfg.str("dust.init") == "gaussian_ring") {
     const double r0 = cfg.real("dust.ring_r_au");
     if (r0 <= r_in || r0 >= r_out)
@@ -184,7 +191,8 @@ Simulation::Simulation(const Config& cfg)
   const auto ice = species_from_config(cfg, "ice"), sil = species_from_config(cfg, "sil");
   std::vector<bool> inside(n, false);
   for (int i = 0; i < n; ++i) {
-    inside[i] = snowline && std::isfinite(r_snow) && grid_.r_c(i) < r_snow;
+    // r_snow: +inf warmer than T_sub everywhere (all silicate), 0 colder everywhere
+    inside[i] = snowline && grid_.r_c(i) < r_snow;
     species_.push_back(inside[i] ? sil : ice);
   }
 
@@ -679,8 +687,16 @@ std::string Simulation::summary() const {
     s << std::expm1(grid_.dlnr(0)) << " at r_in to " << std::expm1(grid_.dlnr(n - 1))
       << " at r_out, stretch " << grid_.stretch() << ")\n";
   s << "gas disk: " << disk_->name()
-    << (gas_.evolves() ? ", viscously evolving" : ", static") << "; snow line at "
-    << disk_->r_snow() / kAu << " au\n";
+    << (gas_.evolves() ? ", viscously evolving" : ", static") << "; ";
+  const double r_snow_au = disk_->r_snow() / kAu;
+  if (!cfg_.flag("snowline.enabled"))
+    s << "snow line off (icy solids everywhere)\n";
+  else if (std::isinf(r_snow_au))
+    s << "no snow line: warmer than disk.T_sub everywhere (all silicate)\n";
+  else if (r_snow_au == 0.0)
+    s << "no snow line: colder than disk.T_sub everywhere (all ice)\n";
+  else
+    s << "snow line at " << r_snow_au << " au\n";
   s << "state: " << L.size() << " variables; per cell:";
   for (int k = 0; k < L.n_cell_vars(); ++k) s << " " << L.cell_var(k).name;
   s << "; global:";

@@ -41,6 +41,10 @@ CASES = [
      ["initial Sigma_d", "inf", "dust.*"]),
     ("no gas in a cell", None, ["--set", 'disk.model="lbp"', "--set", "disk.r_c_au=1e-6"],
      ["Sigma_g", "= 0", "disk.*"]),
+    # a temperature rising outward puts ice inside silicate (the snow line was NaN, and the
+    # whole disk was taken as ice, with exit 0)
+    ("temperature rising outward with a snow line", None, ["--set", "disk.q=-0.5"],
+     ["disk.q", "-0.5", "rise outward", "snowline.enabled = false"]),
     # output times the integrator cannot tell apart (CV_TOO_CLOSE, exit 3, before)
     ("output times too close", None,
      ["--set", "output.times_yr=[1.0, 1.0000000000000002]", "--set", "output.t_end_yr=2"],

@@ -88,6 +88,25 @@ TEST(GasDisk, SnowLine) {
   EXPECT_NEAR(mmsn(150.0).r_snow() / kAu, 0.78, 0.005);
 }
 
+TEST(GasDisk, SnowLineWhereTheTemperatureNeverCrossesTSub) {
+  // warmer than T_sub everywhere (the floor above it, or q = 0 and T_1 > T_sub): +inf, so
+  // every cell is inside (silicate); colder everywhere (q = 0, T_1 < T_sub): 0, so none
+  // is; T rising outward (q < 0): NaN (validate_scene refuses it with the snow line on)
+  const auto disk = [](double T_1au, double q, double T_floor) {
+    ThermalParams th;
+    th.T_1au = T_1au;
+    th.q = q;
+    th.T_floor = T_floor;
+    return PowerLawDisk({units::kMsun, units::kLsun}, th, 1700.0, 1.5);
+  };
+  EXPECT_TRUE(std::isinf(disk(280.0, 0.5, 200.0).r_snow()));
+  EXPECT_TRUE(std::isinf(disk(280.0, 0.0, 10.0).r_snow()));
+  EXPECT_EQ(disk(100.0, 0.0, 10.0).r_snow(), 0.0);
+  EXPECT_TRUE(std::isnan(disk(280.0, -0.5, 10.0).r_snow()));
+  // a floor below T_sub does not move it: 280 r^-1/2 = 170 K at 2.71 au
+  EXPECT_NEAR(disk(280.0, 0.5, 169.0).r_snow() / kAu, 2.71, 0.005);
+}
+
 TEST(GasDisk, TemperatureScalesWithLuminosityAndHasFloor) {
   ThermalParams th;
   PowerLawDisk bright({units::kMsun, 16.0 * units::kLsun}, th, 1700.0, 1.5);
