@@ -103,3 +103,8 @@ def alpha_cs_h(config, r_au):
     cs2 = SPEC_KB * temp / (d["mu"] * SPEC_MH)
     omega = np.sqrt(SPEC_G * s["mass_msun"] * SPEC_MSUN / (r_au * SPEC_AU) ** 3)
     return d["alpha"] * cs2 / omega
+
+
+def text(v):
+    """An HDF5 string attribute as str (h5py gives bytes for fixed-length strings)."""
+    return v.decode() if isinstance(v, bytes) else str(v)

@@ -5,7 +5,7 @@ import os
 import h5py
 import numpy as np
 
-from common import REPO, run_checked
+from common import REPO, run_checked, text
 
 # The fiducial physics (growth, porosity, planetesimals, snow line) on 32 cells to 300 yr:
 # about 0.2-0.5 s a run, with planetesimals formed in most runs.
@@ -60,11 +60,6 @@ def run_summary(h5):
             elif k == "t_first_pl":
                 out["t_first_pl_min"] = float(np.nanmin(v)) if np.isfinite(v).any() else np.nan
     return out
-
-
-def text(v):
-    """An HDF5 string attribute as str (h5py gives bytes for fixed-length strings)."""
-    return v.decode() if isinstance(v, bytes) else str(v)
 
 
 def run_summary_units(h5):

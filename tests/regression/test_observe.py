@@ -10,12 +10,11 @@
 import glob
 import os
 import subprocess
-import tomllib
 
 import h5py
 import numpy as np
 
-from common import Checks, parse_args, run
+from common import Checks, load_run, parse_args, run
 
 H, C, K_B = 6.62607015e-27, 2.99792458e10, 1.3807e-16   # cgs; K_B as src/units.hpp
 JY_ARCSEC2 = 1e-23 * (180 * 3600 / np.pi) ** 2        # erg/s/cm2/Hz/sr per Jy/arcsec^2
@@ -151,8 +150,7 @@ def main():
         # the mixing rule's filling factor is the volume fraction of the optical solid,
         # rho_int / rho_solid: silicate inside the snow line, the ice-silicate mix
         # outside, of density 1/(f_ice/rho_ice + (1 - f_ice)/rho_sil)
-        text = f.attrs["config_toml"]
-        cfg = tomllib.loads(text.decode() if isinstance(text, bytes) else text)
+        cfg = load_run(grow).config  # the run's resolved scene, parsed by the reader
         rho_sil = cfg["material"]["sil_rho0"]
         f_ice, rho_ice = cfg["snowline"]["f_ice"], cfg["observe"]["water_ice_rho"]
         rho_solid = np.where(f["model/inner_species"][()] == 1, rho_sil,

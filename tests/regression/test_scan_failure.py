@@ -12,8 +12,8 @@ import stat
 import h5py
 import numpy as np
 
-from common import Checks, parse_args
-from scan_common import run_id, run_summary, run_summary_units, scan, summary, text, write_scan
+from common import Checks, parse_args, text
+from scan_common import run_id, run_summary, run_summary_units, scan, summary, write_scan
 
 WRAPPER = """#!/bin/sh
 # a panoptic that crashes for two runs of the scan
