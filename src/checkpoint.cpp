@@ -145,6 +145,18 @@ bool ends_with(std::string_view s, std::string_view suffix) {
   return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
 }
 
+// True when the file begins with the 8-byte HDF5 signature (a file the program wrote
+// has no user block, so the signature is at offset 0; a truncated file keeps it).
+bool has_hdf5_signature(const fs::path& path) {
+  static constexpr char kSignature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+  char head[8] = {};
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return false;
+  const std::size_t n = std::fread(head, 1, sizeof head, f);
+  std::fclose(f);
+  return n == sizeof head && std::memcmp(head, kSignature, sizeof head) == 0;
+}
+
 // A scene value as TOML, for messages.
 std::string value_text(const ConfigValue& v) {
   struct Visitor {
@@ -253,13 +265,30 @@ Checkpoint read_checkpoint(const fs::path& path) {
   const std::string name = path.string();
   std::error_code ec;
   if (!fs::exists(path, ec)) throw IoError(name + ": checkpoint not found");
+  // The wrong file given to --restart (a directory, the scene, the run's output) is bad
+  // input, exit 2, with the file to give instead; it was called a truncated or damaged
+  // checkpoint, with the advice to start the run again without --restart.
+  const std::string give =
+      "; --restart takes the checkpoint written next to the run's output, "
+      "<output>.chk.h5";
+  if (fs::is_directory(path, ec))
+    throw ConfigError(name + ": is a directory, not a checkpoint" + give);
   h5::Handle f;
   try {
     f = h5::open_file(name, false);
   } catch (const IoError&) {
+    if (!has_hdf5_signature(path) && !ends_with(name, ".chk.h5") &&
+        !ends_with(name, ".chk.prev.h5"))
+      throw ConfigError(name + ": not an HDF5 file, so not a checkpoint" + give);
     throw IoError(name +
                   ": not a readable HDF5 file: the checkpoint is truncated or "
                   "damaged");
+  }
+  if (!h5::has_attr(f.get(), "format") && h5::exists(f.get(), "snapshots")) {
+    const fs::path chk = checkpoint_path(path);
+    throw ConfigError(name + ": the output of a run, not its checkpoint; restart from " +
+                      chk.string() +
+                      (fs::exists(chk, ec) ? "" : " (not there: the run wrote none)"));
   }
   Checkpoint chk;
   std::string stored;
@@ -409,6 +438,12 @@ RunOutput continue_output(const RestartPoint& restart, const fs::path& output,
                          ? std::string()
                          : " (nor " + sibling.string() + ")") +
                     "; pass it with -o, or start a new run without --restart");
+  } else if (!fs::exists(path, ec)) {
+    // was "cannot read the run's output file ...: it is damaged"
+    throw ConfigError("-o " + path.string() +
+                      ": no such file; with --restart, -o names the existing output to "
+                      "continue (the checkpoint's run wrote " +
+                      chk.output_file + "); leave -o out to continue that one");
   }
   const auto n_keep = static_cast<std::size_t>(chk.snapshot_index) + 1;
   // Read-only first: a wrong file must be refused before a row of it is cut.

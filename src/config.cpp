@@ -313,7 +313,10 @@ std::optional<ConfigValue> convert(const KeySpec& spec, const toml::node& node,
   };
   const auto finite_problem = [&](double x) {
     problem = std::string("must be a finite number, not ") +
-              (std::isnan(x) ? "nan" : "inf") + "; " + fix_text(spec);
+              (std::isnan(x) ? "nan"
+               : x < 0       ? "-inf"
+                             : "inf") +
+              "; " + fix_text(spec);
   };
 
   switch (spec.type) {
@@ -541,6 +544,10 @@ class Loader {
       return;
     }
     const KeySpec* spec = find_spec(key);
+    if (spec && raw.empty() && spec->type != KeyType::kString) {
+      add_override(where + ": " + key + " = : no value after '='; " + fix_text(*spec));
+      return;
+    }
     if (!spec) {
       add_override(where + ": " + shown_key(key) + " = " + shown + ": unknown key; " +
                    unknown_key_fix(key));

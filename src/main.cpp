@@ -396,9 +396,9 @@ int track(const std::string& scene, const std::vector<std::string>& overrides,
   const Config cfg = load_scene(scene, overrides);
   validate_scene(cfg);
   if (!(r0_au > cfg.real("grid.r_in_au") && r0_au <= 1e6))
-    throw ConfigError("--r0-au " + num(r0_au) +
-                      ": must be outside the inner edge grid.r_in_au and <= 1e6 [au]; "
-                      "start there");
+    throw ConfigError(
+        "--r0-au " + num(r0_au) + ": must be > the inner edge grid.r_in_au = " +
+        num(cfg.real("grid.r_in_au")) + " and <= 1e6 [au]; release the particle there");
   // a time or size of 0, below, NaN or inf ended the track at once with exit 0 (or
   // failed in CVODE)
   if (!(t_max_yr >= 1e-6 && t_max_yr <= 1e12))
@@ -593,6 +593,14 @@ int main(int argc, char** argv) {
   }
 
   try {
+    // -o "" (an unset variable in a batch script) wrote to the default output instead
+    for (auto* cmd : {run_cmd, obs_cmd})
+      if (*cmd && cmd->count("--output") > 0 &&
+          (cmd == run_cmd ? args.output : obs.output).empty())
+        throw ConfigError(std::string("-o \"\": an empty output path (an unset "
+                                      "variable?); give a file name, or leave -o out for "
+                                      "the default ") +
+                          (cmd == run_cmd ? "out/<scene>.h5" : "<run>_obs.h5"));
     if (*run_cmd) {
       args.preset = fast ? "fast" : accurate ? "accurate" : "";
       overrides = with_preset(args.preset, overrides);

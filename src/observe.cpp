@@ -50,7 +50,10 @@ Snapshot read_snapshot(const std::string& file, double time_yr) {
   h5::quiet_errors();
   std::error_code ec;
   if (!fs::is_regular_file(file, ec))
-    throw ConfigError(file + ": no such file; give the HDF5 output of `panoptic run`");
+    throw ConfigError(file +
+                      (fs::exists(file, ec) ? ": not a regular file (a directory?)"
+                                            : ": no such file") +
+                      "; give the HDF5 output of `panoptic run`");
   h5::Handle f;
   try {
     f = h5::open_file(file, false);

@@ -332,15 +332,17 @@ std::vector<KeySpec> make_keys() {
               "checkpoint at every k-th snapshot (0 = off)", 0, 1e6),
 
       // [output]
-      real("output.t_end_yr", "1e6", "yr", "end of the run", 1e-6),
+      // 1e12 yr: far beyond any disk's life, and t_end in seconds stays finite (1e308 yr
+      // was inf s: the run wrote its output and failed in CVODE, exit 3)
+      real("output.t_end_yr", "1e6", "yr", "end of the run", 1e-6, false, 1e12, false),
       real("output.t_first_yr", "100.0", "yr",
            "first snapshot after t = 0 (log-spaced snapshots from here to t_end)", 1e-6),
       integer("output.n_snapshots", "41",
               "log-spaced snapshots after t = 0 (t_first..t_end)", 1, 1e6),
       real_list("output.times_yr", "yr",
-                "explicit snapshot times, each >= 1e-6 yr, at least 1e-9 (relative) "
-                "apart; replaces the log spacing when not empty",
-                0.0),
+                "explicit snapshot times, each <= t_end_yr, strictly increasing, at "
+                "least 1e-9 (relative) apart; replaces the log spacing when not empty",
+                1e-6),
       text("output.file", "output file (default: out/<scene name>.h5; -o overrides)"),
 
       // [observe] `panoptic observe` (README "Synthetic observations"): optical

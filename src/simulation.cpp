@@ -4,12 +4,14 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "disk/gas_disk.hpp"
 #include "disk/viscous_gas.hpp"
 #include "physics/contact_mechanics.hpp"
 #include "physics/dust_transport.hpp"
 #include "physics/local_gas.hpp"
+#include "physics/optical_constants.hpp"
 #include "physics/planetesimals.hpp"
 #include "physics/porous_growth.hpp"
 #include "physics/stokes_model.hpp"
@@ -112,8 +114,8 @@ void validate_scene(const Config& cfg) {
              "raise it");
   // Output times: CVODE cannot step to a time closer to the last one than a few
   // round-offs (CV_TOO_CLOSE) nor start with a step of 1e-300 yr (CV_ILL_INPUT), so
-  // they must lie >= kMinTime after t = 0 (the bound of output.t_end_yr and t_first_yr
-  // in the schema; output.times_yr is checked here) and kMinGap (relative) apart.
+  // they must lie >= kMinTime after t = 0 (the lower bound of output.t_end_yr,
+  // t_first_yr and times_yr in the schema) and kMinGap (relative) apart.
   constexpr double kMinTime = 1e-6, kMinGap = 1e-9;
   const double t_end = cfg.real("output.t_end_yr");
   const auto& times = cfg.reals("output.times_yr");
@@ -144,6 +146,25 @@ void validate_scene(const Config& cfg) {
                                       " [yr] (or t_end_yr) are less than " +
                                       num(kMinGap) + " (relative) apart; merge them");
   }
+  // /timeseries: RunDiagnostics lays out every sample time at the start, so their number
+  // is bounded (1e6 snapshots of 1e5 samples each, both inside their ranges, asked for
+  // 800 GB and ended in std::bad_alloc after the output file was created)
+  {
+    constexpr double kMaxSamples = 1e7;
+    // the intervals of output_times(): to each listed time, and on to t_end
+    const double intervals =
+        times.empty() ? double(cfg.integer("output.n_snapshots"))
+                      : double(times.size()) + (times.back() < t_end ? 1.0 : 0.0);
+    const long per = cfg.integer("pebbles.samples_per_snapshot");
+    if (intervals * double(per) > kMaxSamples)
+      cfg.fail("pebbles.samples_per_snapshot",
+               "with " + num(intervals) +
+                   " snapshot intervals (output.n_snapshots or output.times_yr) makes " +
+                   num(intervals * double(per)) + " /timeseries samples, more than " +
+                   num(kMaxSamples) + "; lower pebbles.samples_per_snapshot to at most " +
+                   std::to_string(std::max(1L, long(kMaxSamples / intervals))) +
+                   " or use fewer snapshots");
+  }
   if (cfg.flag("porosity.enabled") && !cfg.flag("growth.enabled"))
     cfg.fail(
         "porosity.enabled",
@@ -167,6 +188,21 @@ void validate_scene(const Config& cfg) {
                    ") [au]: the flux through r_in is always recorded, and none crosses "
                    "the closed outer edge; remove " +
                    num(r));
+  // The optical-constant tables are read only by `panoptic observe`, but a table that
+  // observe will refuse (lengths differ, wavelengths not increasing) is checked here, so
+  // that `panoptic check` and a run find it and not an observe after the run.
+  for (const std::string sp : {"ice", "sil"}) {
+    const std::string key = "observe." + sp;
+    try {
+      physics::OpticalTable(sp, cfg.reals(key + "_lambda_mm"), cfg.reals(key + "_n"),
+                            cfg.reals(key + "_k"));
+    } catch (const std::invalid_argument& e) {
+      std::string blamed = key + "_lambda_mm";  // the one the scene set, if only one
+      for (const char* suffix : {"_n", "_k"})
+        if (cfg.user_set(key + suffix) && !cfg.user_set(blamed)) blamed = key + suffix;
+      cfg.fail(blamed, std::string(e.what()) + "; fix " + key + "_lambda_mm, _n, _k");
+    }
+  }
   if (cfg.str("dust.init") == "gaussian_ring") {
     const double r0 = cfg.real("dust.ring_r_au");
     if (r0 <= r_in || r0 >= r_out)

@@ -97,6 +97,63 @@ def main():
         c.check(p.returncode == 2 and flag in p.stderr,
                 f"track {flag} {value}: exit {p.returncode}: {p.stderr.strip()}")
 
+    # a release radius inside the grid's inner edge: the message gives the edge
+    p = subprocess.run([args.exe, "track", os.path.join(REPO, "params/fiducial.toml"),
+                        "--r0-au", "0.5"], capture_output=True, text=True)
+    c.check(p.returncode == 2 and "grid.r_in_au = 1 " in p.stderr,
+            f"track --r0-au 0.5: exit {p.returncode}, names r_in: {p.stderr.strip()}")
+    # observe given a directory: it was "no such file"
+    p = subprocess.run([args.exe, "observe", args.workdir, "--time-yr", "1", "--lambda-mm",
+                        "1.3"], capture_output=True, text=True)
+    c.check(p.returncode == 2 and "not a regular file" in p.stderr,
+            f"observe DIR: exit {p.returncode}: {p.stderr.strip()}")
+
+    # the wrong file given to --restart, or to -o with --restart, is bad input (exit 2)
+    # naming the file to give: it was a "truncated or damaged" checkpoint (exit 4) with
+    # the advice to start the run again without --restart
+    fiducial = os.path.join(REPO, "params/fiducial.toml")
+    short = ["--set", "output.t_end_yr=10", "--set", "output.t_first_yr=1"]
+    run_out = os.path.join(args.workdir, "short.h5")
+    chk = run_out[:-3] + ".chk.h5"
+    for f in (run_out, chk):
+        if os.path.exists(f):
+            os.remove(f)
+    p = subprocess.run([args.exe, "run", fiducial, "-o", run_out] + short,
+                       capture_output=True, text=True)
+    c.check(p.returncode == 0 and os.path.exists(chk), f"short run: exit {p.returncode}")
+    missing = os.path.join(args.workdir, "missing.h5")
+    for label, extra, needles in (
+            ("--restart the scene", ["--restart", fiducial], ["not an HDF5 file", ".chk.h5"]),
+            ("--restart a directory", ["--restart", args.workdir], ["is a directory"]),
+            ("--restart the output", ["--restart", run_out, "-o", run_out],
+             ["the output of a run, not its checkpoint", "restart from " + chk]),
+            ("--restart with -o a missing file",
+             ["--restart", chk, "-o", missing, "--set", "output.t_end_yr=100"],
+             ["-o " + missing, "no such file", run_out])):
+        before = open(run_out, "rb").read()
+        p = subprocess.run([args.exe, "run", fiducial] + short + extra,
+                           capture_output=True, text=True)
+        print(f"[{label}] exit {p.returncode}: {p.stderr.strip()}")
+        c.check(p.returncode == 2 and all(n in p.stderr for n in needles)
+                and "without --restart" not in p.stderr,
+                f"{label}: exit code 2, message names {needles}")
+        c.check(open(run_out, "rb").read() == before and not os.path.exists(missing),
+                f"{label}: the run's output untouched, no file made")
+
+    # -o "" (an unset variable) wrote to the default output, out/<scene>.h5
+    cwd = os.path.join(args.workdir, "empty_o")
+    os.makedirs(cwd, exist_ok=True)
+    for cmd in (["run", fiducial] + short,
+                ["observe", run_out, "--time-yr", "10", "--lambda-mm", "1.3"]):
+        p = subprocess.run([os.path.abspath(args.exe)] + cmd + ["-o", ""],
+                           capture_output=True, text=True,
+                           cwd=cwd)
+        print(f"[{cmd[0]} -o ''] exit {p.returncode}: {p.stderr.strip()}")
+        c.check(p.returncode == 2 and "empty output path" in p.stderr,
+                f"{cmd[0]} -o '': exit code 2, says the path is empty")
+        c.check(not os.listdir(cwd) and not os.path.exists(run_out[:-3] + "_obs.h5"),
+                f"{cmd[0]} -o '': no output written")
+
     # unwritable output location -> I/O error, exit 4
     p = subprocess.run([args.exe, "run", os.path.join(REPO, "params/fiducial.toml"),
                         "-o", "/proc/panoptic/x.h5"], capture_output=True, text=True)

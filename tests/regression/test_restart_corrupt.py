@@ -90,9 +90,13 @@ def main():
             "both damaged: exit 4, the message names both files and the fix")
     c.check(rows(out) == 21, "both damaged: the output is left as it was")
 
-    p = panoptic(args.exe, SCENE, "--restart", ref, "-o", out, sets=full_sets, expect=4)
-    c.check("not a panoptic checkpoint" in p.stderr,
-            "an output file given as checkpoint: exit 4, 'not a panoptic checkpoint'")
+    # the wrong file, not a damaged one: bad input, naming the checkpoint to give (it was
+    # exit 4 with the advice to start the run again without --restart)
+    p = panoptic(args.exe, SCENE, "--restart", ref, "-o", out, sets=full_sets, expect=2)
+    c.check("the output of a run, not its checkpoint" in p.stderr
+            and "restart from " + checkpoint_of(ref) in p.stderr
+            and "without --restart" not in p.stderr,
+            "an output file given as checkpoint: exit 2, names its checkpoint")
     c.finish()
 
 

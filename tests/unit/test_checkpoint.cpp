@@ -248,6 +248,58 @@ TEST(CheckpointFile, TruncatedFlippedOrIncompleteFilesAreRefusedByName) {
   EXPECT_THROW(read_checkpoint(text), IoError);
 }
 
+TEST(CheckpointFile, TheWrongFileIsBadInputNamingTheCheckpointToGive) {
+  // the run's output, the scene or a directory given to --restart were "truncated or
+  // damaged" checkpoints (exit 4), with the advice to start the run again
+  TempDir dir;
+  const fs::path out = dir.path() / "run.h5";
+  {
+    const hid_t f = H5Fcreate(out.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    H5Gclose(H5Gcreate2(f, "snapshots", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    H5Fclose(f);
+  }
+  const auto config_error_of = [](const fs::path& p) -> std::string {
+    try {
+      load_restart_point(p);
+    } catch (const ConfigError& e) {
+      return e.what();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "not a ConfigError: " << e.what();
+      return "";
+    }
+    ADD_FAILURE() << "no error for " << p;
+    return "";
+  };
+  std::string m = config_error_of(out);
+  EXPECT_NE(m.find("the output of a run, not its checkpoint; restart from " +
+                   checkpoint_path(out).string() + " (not there"),
+            std::string::npos)
+      << m;
+  write_checkpoint(checkpoint_path(out), sample());
+  m = config_error_of(out);
+  EXPECT_NE(m.find("restart from " + checkpoint_path(out).string()), std::string::npos)
+      << m;
+  EXPECT_EQ(m.find("not there"), std::string::npos) << m;
+  EXPECT_EQ(m.find("without --restart"), std::string::npos) << m;
+
+  const fs::path scene = dir.path() / "scene.toml";
+  std::ofstream(scene) << "[grid]\nn_cells = 100\n";
+  m = config_error_of(scene);
+  EXPECT_NE(m.find(scene.string() + ": not an HDF5 file"), std::string::npos) << m;
+  EXPECT_NE(m.find("<output>.chk.h5"), std::string::npos) << m;
+  m = config_error_of(dir.path());
+  EXPECT_NE(m.find("is a directory"), std::string::npos) << m;
+
+  // a checkpoint's own name keeps "damaged" (exit 4) and the fallback to .prev
+  const fs::path text = dir.path() / "text.chk.h5";
+  std::ofstream(text) << "not an HDF5 file\n";
+  EXPECT_THROW(load_restart_point(text), IoError);
+  const fs::path cut = dir.path() / "cut.h5";  // truncated: the signature is still there
+  fs::copy_file(checkpoint_path(out), cut);
+  fs::resize_file(cut, 100);
+  EXPECT_THROW(load_restart_point(cut), IoError);
+}
+
 TEST(CheckpointFile, RestartFallsBackToThePreviousCheckpointAndSaysWhy) {
   TempDir dir;
   const fs::path chk = dir.path() / "run.chk.h5";

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "src/config.hpp"
+#include "src/simulation.hpp"
 #include "src/toml_guard.hpp"
 
 namespace panoptic {
@@ -245,7 +246,18 @@ TEST(Config, ExclusiveAndInclusiveMaximum) {
 TEST(Config, ListElementsAreRangeChecked) {
   expect_parts(error_of("[output]\ntimes_yr = [1,\n  -2]\n"),
                {"scene.toml:2:", "output.times_yr = [1, -2]", "element 2 (-2)",
-                "must be >= 0 [yr]"});
+                "must be >= 1e-06 [yr]"});
+  // the bound the run needs (it said ">= 0", and then 0 was refused as < 1e-6)
+  expect_parts(error_of("[output]\ntimes_yr = [0.0]\n"),
+               {"output.times_yr = [0.0]", "element 1 (0)", "must be >= 1e-06 [yr]",
+                "each >= 1e-06"});
+}
+
+TEST(Config, EndTimeIsBoundedSoThatItIsFiniteInSeconds) {
+  // 1e308 yr is inf s: `check` accepted it and the run failed in CVODE (exit 3)
+  expect_parts(error_of("[output]\nt_end_yr = 1e308\n"),
+               {"scene.toml:2:1:", "output.t_end_yr = 1e308", "<= 1e+12 [yr]"});
+  EXPECT_EQ(load("[output]\nt_end_yr = 1e12\n").real("output.t_end_yr"), 1e12);
 }
 
 TEST(Config, InfAndNanAreRefused) {
@@ -255,6 +267,9 @@ TEST(Config, InfAndNanAreRefused) {
                {"scene.toml:2:", "disk.p = nan", "finite"});
   expect_parts(error_of("[output]\ntimes_yr = [1, +inf]\n"),
                {"scene.toml:2:", "element 2", "finite"});
+  // the value as written, with its sign (was "not inf")
+  expect_parts(error_of("[grid]\nr_in_au = -inf\n"),
+               {"grid.r_in_au = -inf", "must be a finite number, not -inf"});
 }
 
 TEST(Config, StringNotInChoicesListsTheChoices) {
@@ -358,7 +373,10 @@ TEST(Config, OverrideWithABadValue) {
                {"--set", "grid.r_in_au = -1", "must be > 0 [au]"});
   expect_parts(error_of("", {"disk.model=lbp2"}),
                {"--set", "disk.model = lbp2", "choose one of: powerlaw, lbp"});
-  expect_parts(error_of("", {"grid.r_in_au="}), {"--set", "grid.r_in_au", "must be"});
+  // an empty value is said to be one (was "must be a real number, not a string")
+  expect_parts(error_of("", {"grid.n_cells="}),
+               {"--set: grid.n_cells = : no value after '='", "set grid.n_cells to"});
+  EXPECT_EQ(load("", {"meta.description="}).str("meta.description"), "");
   expect_parts(error_of("", {"meta.description=\xff"}), {"--set", "not valid UTF-8"});
 }
 
@@ -427,7 +445,7 @@ TEST(Config, ResolvedTomlReadsBackToTheSameScene) {
       "p = 0.1\nq = 0.30000000000000004\nalpha = 1e-300\nsigma_mol = 5e-324\n"
       "sigma_1au = 6.02214076e23\nT_1au = 3\n"
       "[grid]\nn_cells = 1000000\n"
-      "[output]\ntimes_yr = [0, 1, 0.1, 1e-7, 123456789012345678, "
+      "[pebbles]\nradii_au = [0, 1, 0.1, 1e-7, 123456789012345678, "
       "1.7976931348623157e308]\n",
       {"disk.gamma=-0.0"});
   const std::string resolved = c.resolved_toml();
@@ -456,9 +474,9 @@ TEST(Config, ResolvedTomlRoundTripsRandomDoublesExactly) {
   }
   std::uniform_real_distribution<double> uniform(0.0, 1e6);
   for (int i = 0; i < 500; ++i) xs.push_back(uniform(rng));
-  c.values_["output.times_yr"] = xs;
+  c.values_["pebbles.radii_au"] = xs;  // a list whose bound (>= 0) takes any of them
   const Config back = load_scene_text(c.resolved_toml(), "resolved.toml");
-  EXPECT_EQ(back.reals("output.times_yr"), xs);
+  EXPECT_EQ(back.reals("pebbles.radii_au"), xs);
 }
 
 TEST(Config, ResolvedTomlMarksDefaults) {
@@ -638,6 +656,50 @@ TEST(Config, SetValueBeyondTheNumberRangeSaysSo) {
   expect_parts(error_of("", {"grid.n_cells=99999999999999999999"}),
                {"grid.n_cells", "beyond the range of a 64-bit integer", "<= 1000000"});
   expect_parts(error_of("", {"grid.n_cells=abc"}), {"grid.n_cells", "not a string"});
+}
+
+// ---------------------------------------------------------------------------------------
+// Cross-key checks (validate_scene)
+
+// The message of the ConfigError validate_scene throws for the scene ("" and a failure
+// if none).
+std::string scene_error_of(std::string_view text, const Overrides& overrides = {}) {
+  try {
+    validate_scene(load(text, overrides));
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "validate_scene accepted:\n" << text;
+  return "";
+}
+
+TEST(SceneChecks, TimeseriesSamplesAreBounded) {
+  // each inside its range, together 1e11 sample times: the run created its output and
+  // then ended in std::bad_alloc (exit 1) after taking all the memory it could
+  expect_parts(scene_error_of("[output]\nn_snapshots = 1000000\n"
+                              "[pebbles]\nsamples_per_snapshot = 100000\n"),
+               {"scene.toml:4:1: pebbles.samples_per_snapshot = 100000",
+                "1e+11 /timeseries samples", "more than 1e+07", "at most 10"});
+  std::string times = "[output]\nt_end_yr = 1e6\ntimes_yr = [1.0";
+  for (int k = 2; k <= 20000; ++k) times += ", " + std::to_string(k) + ".0";
+  expect_parts(scene_error_of(times + "]\n[pebbles]\nsamples_per_snapshot = 1000\n"),
+               {"pebbles.samples_per_snapshot = 1000", "with 20001 snapshot intervals",
+                "2.0001e+07 /timeseries samples", "at most 499"});
+  // the largest count of each alone, with the other's default, passes
+  validate_scene(load("[output]\nn_snapshots = 1000000\n"));
+  validate_scene(load("[pebbles]\nsamples_per_snapshot = 100000\n"));
+}
+
+TEST(SceneChecks, OpticalTablesAreCheckedBeforeTheRun) {
+  // read only by `panoptic observe`; a table it refuses passed `check` and a whole run
+  expect_parts(scene_error_of("", {"observe.ice_n=[1.0]"}),
+               {"--set: observe.ice_n = [1.0]", "same length (9, 1, 9)",
+                "fix observe.ice_lambda_mm, _n, _k"});
+  expect_parts(scene_error_of("[observe]\nsil_lambda_mm = [2.0, 1.0]\n"
+                              "sil_n = [3.0, 3.0]\nsil_k = [0.1, 0.1]\n"),
+               {"scene.toml:2:1: observe.sil_lambda_mm = [2.0, 1.0]",
+                "wavelengths must increase strictly"});
+  validate_scene(load(""));
 }
 
 }  // namespace
