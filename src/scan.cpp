@@ -143,6 +143,7 @@ Prepared prepare(const ScanOptions& o) {
     t.log = run_file(p.dir, e.name, "log").string();
     t.err = run_file(p.dir, e.name, "err").string();
     t.status = run_file(p.dir, e.name, "status").string();
+    t.config_toml = p.resolved[i].config_toml;
     t.argv = {exe, "run", p.m.scene.string()};
     for (const std::string& s : p.m.overrides(i))
       t.argv.insert(t.argv.end(), {"--set", s});
@@ -177,14 +178,14 @@ class Pool {
   bool has_free() const { return static_cast<int>(running_.size()) < slots_; }
   bool idle() const { return running_.empty(); }
   //! Starts a run: continued from its checkpoint when an earlier attempt left its output
-  //! and a checkpoint (a run stopped by SIGTERM/SIGINT, or one killed after its last
-  //! periodic checkpoint), else from the start.
+  //! and a checkpoint of the run's scene (a run stopped by SIGTERM/SIGINT, or one killed
+  //! after its last periodic checkpoint), else from the start.
   void start(const ScanTask& t) {
     std::vector<bool> used(static_cast<std::size_t>(slots_), false);
     for (const auto& [pid, r] : running_) used[static_cast<std::size_t>(r.slot)] = true;
     int slot = 0;
     while (used[static_cast<std::size_t>(slot)]) ++slot;
-    launch(t, slot, restart_of(t));
+    launch(t, slot, can_continue(t));
   }
   //! A run that ended since the last call, with its record written.
   std::optional<RunRecord> poll() {
@@ -222,10 +223,6 @@ class Pool {
     Clock::time_point start;
     bool restart = false;
   };
-  static bool restart_of(const ScanTask& t) {
-    std::error_code ec;
-    return fs::exists(t.h5, ec) && fs::exists(checkpoint_path(t.h5), ec);
-  }
   void launch(const ScanTask& t, int slot, bool restart) {
     ScanTask run = t;
     if (restart) {  // "--overwrite" (last) becomes "--restart CHK"

@@ -15,6 +15,7 @@
 #include <limits>
 #include <sstream>
 
+#include "src/checkpoint.hpp"
 #include "src/error.hpp"
 #include "src/h5.hpp"
 
@@ -98,9 +99,10 @@ std::string hostname() {
 }  // namespace
 
 std::string ScanTask::serialize() const {
-  // NUL-separated fields: id, name, h5, log, err, status, then argv
+  // NUL-separated fields: id, name, h5, log, err, status, config_toml, then argv
   std::string out = std::to_string(id);
-  for (const std::string* s : {&name, &h5, &log, &err, &status}) out += '\0' + *s;
+  for (const std::string* s : {&name, &h5, &log, &err, &status, &config_toml})
+    out += '\0' + *s;
   for (const std::string& a : argv) out += '\0' + a;
   return out;
 }
@@ -115,7 +117,7 @@ ScanTask ScanTask::deserialize(std::string_view bytes) {
     if (b == std::string_view::npos) break;
     a = b + 1;
   }
-  if (f.size() < 7) throw Error("internal error: malformed scan task message");
+  if (f.size() < 8) throw Error("internal error: malformed scan task message");
   ScanTask t;
   t.id = std::stol(f[0]);
   t.name = f[1];
@@ -123,7 +125,8 @@ ScanTask ScanTask::deserialize(std::string_view bytes) {
   t.log = f[3];
   t.err = f[4];
   t.status = f[5];
-  t.argv.assign(f.begin() + 6, f.end());
+  t.config_toml = f[6];
+  t.argv.assign(f.begin() + 7, f.end());
   return t;
 }
 
@@ -210,6 +213,23 @@ RunRecord finish_task(const ScanTask& task, int wait_status, double wall_s,
     << "\nhost=" << escape(r.host) << "\nerror=" << escape(r.error) << "\n";
   write_atomically(task.status, s.str());
   return r;
+}
+
+bool can_continue(const ScanTask& task) {
+  std::error_code ec;
+  const fs::path chk = checkpoint_path(task.h5);
+  if (!fs::exists(task.h5, ec)) return false;
+  h5::quiet_errors();
+  for (const fs::path& file : {chk, previous_checkpoint_path(chk)}) {
+    if (!fs::exists(file, ec)) continue;
+    try {
+      h5::Handle f = h5::open_file(file.string(), false);
+      return h5::get_attr_string(f.get(), "config_toml") == task.config_toml;
+    } catch (const Error&) {
+      // unreadable: panoptic run --restart falls back on the previous checkpoint
+    }
+  }
+  return false;
 }
 
 std::optional<RunRecord> read_record(const fs::path& status) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "src/error.hpp"
+#include "src/scan_exec.hpp"
 #include "src/scan_manifest.hpp"
 
 namespace panoptic {
@@ -212,6 +213,30 @@ TEST(ScanManifest, ManifestBodyIgnoresComments) {
   const Manifest m = expand("[[axis]]\nkey = \"star.mass_msun\"\nvalues = [1.0]\n");
   EXPECT_EQ(manifest_body(m.to_toml("# a header\n# more\n")), manifest_body(m.to_toml()));
   EXPECT_EQ(manifest_body(m.to_toml()), m.to_toml());
+}
+
+TEST(ScanManifest, TaskMessageCarriesTheRunsScene) {
+  // An MPI worker decides from task.config_toml whether a checkpoint may be continued:
+  // the message must carry it whole (multi-line, quotes), and the command line after it.
+  ScanTask t;
+  t.id = 17;
+  t.name = "run_00017";
+  t.h5 = "/d/runs/run_00017.h5";
+  t.log = "/d/runs/run_00017.log";
+  t.err = "/d/runs/run_00017.err";
+  t.status = "/d/runs/run_00017.status";
+  t.config_toml = "[star]\nmass_msun = 1.5\n[disk]\nmodel = \"lbp\"\n";
+  t.argv = {"/bin/panoptic", "run", "s.toml", "--set",
+            "a.b=1",         "-o",  t.h5,     "--overwrite"};
+  const ScanTask u = ScanTask::deserialize(t.serialize());
+  EXPECT_EQ(u.id, t.id);
+  EXPECT_EQ(u.name, t.name);
+  EXPECT_EQ(u.h5, t.h5);
+  EXPECT_EQ(u.log, t.log);
+  EXPECT_EQ(u.err, t.err);
+  EXPECT_EQ(u.status, t.status);
+  EXPECT_EQ(u.config_toml, t.config_toml);
+  EXPECT_EQ(u.argv, t.argv);
 }
 
 }  // namespace
