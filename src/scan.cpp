@@ -274,6 +274,28 @@ struct MpiSession {
   int rank = 0, size = 1;
 };
 
+//! Runs `body` on a rank once the ranks work together. An error there (an I/O error
+//! writing a run's record or the summary, ...) must not just end this rank: the others
+//! would wait for its messages forever, and the job would hang until its time limit. So
+//! the error is printed and the whole job ended (MPI_Abort: mpirun stops every rank, and
+//! the runs die with their ranks, PR_SET_PDEATHSIG); a rerun resumes the scan.
+template <class Body>
+int or_abort(Body&& body) {
+  int code = 1;
+  try {
+    return body();
+  } catch (const Error& e) {
+    std::fprintf(stderr, "panoptic: error: %s\n", e.what());
+    code = e.exit_code();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "panoptic: internal error: %s\n", e.what());
+  }
+  std::fflush(stdout);
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, code);
+  return code;
+}
+
 //! A message from rank 0 if one is waiting: its tag and bytes.
 std::optional<std::pair<int, std::string>> poll_master() {
   int flag = 0;
@@ -491,7 +513,7 @@ int run_scan(const ScanOptions& o) {
 #ifdef PANOPTIC_HAVE_MPI
   if (world > 1) {
     MpiSession mpi;
-    if (mpi.rank != 0) return mpi_worker(mpi, o.jobs);
+    if (mpi.rank != 0) return or_abort([&] { return mpi_worker(mpi, o.jobs); });
     Prepared p;
     int code = 0;
     try {
@@ -504,11 +526,13 @@ int run_scan(const ScanOptions& o) {
       throw;
     }
     for (int r = 1; r < mpi.size; ++r) MPI_Send("0", 1, MPI_CHAR, r, kGo, MPI_COMM_WORLD);
-    find_todo(p, std::nullopt);
-    std::printf("scan: %d MPI ranks, %d run%s at once each\n", mpi.size, o.jobs,
-                o.jobs == 1 ? "" : "s");
-    const bool done = execute(p, o.jobs, mpi.size);
-    return finish(p, done);
+    return or_abort([&] {
+      find_todo(p, std::nullopt);
+      std::printf("scan: %d MPI ranks, %d run%s at once each\n", mpi.size, o.jobs,
+                  o.jobs == 1 ? "" : "s");
+      const bool done = execute(p, o.jobs, mpi.size);
+      return finish(p, done);
+    });
   }
 #endif
   Prepared p = prepare(o);
