@@ -567,8 +567,9 @@ int main(int argc, char** argv) {
                        "scan directory (manifest, runs/, summary)");
   scan_cmd->add_option("-j,--jobs", scan_opts.jobs, "runs at once (per MPI rank)")
       ->capture_default_str();
-  scan_cmd->add_option("--task", scan_opts.task,
-                       "run only manifest entry I (job arrays)");
+  std::string task_text;
+  auto* task_opt =
+      scan_cmd->add_option("--task", task_text, "run only manifest entry I (job arrays)");
   scan_cmd->add_flag("--dry-run", scan_opts.dry_run,
                      "validate and print the manifest; write nothing");
   scan_cmd->add_flag("--force", scan_opts.force,
@@ -581,6 +582,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     if (*scan_cmd && !scan_opts.dry_run && scan_opts.dir.empty())
       throw CLI::RequiredError("-o DIR (the scan directory)");
+    if (task_opt->count() > 0) scan_opts.task = task_text;  // checked by run_scan
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

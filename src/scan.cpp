@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -33,6 +34,7 @@
 #include "src/scan_exec.hpp"
 #include "src/scan_manifest.hpp"
 #include "src/scan_summary.hpp"
+#include "src/toml_literal.hpp"
 
 #ifdef PANOPTIC_HAVE_MPI
 // the C API only: OpenMPI and MPICH would pull in their deprecated C++ bindings
@@ -454,8 +456,24 @@ int finish(const Prepared& p, bool completed_loop) {
   return c.other > 0 ? kExitStopped : 0;
 }
 
+//! --task I as given: the id of a manifest entry (checked against the manifest by
+//! run_one_task). An empty value (an unset $SLURM_ARRAY_TASK_ID) is refused, not taken
+//! as "every run": each task of the array would run the whole scan.
+long parse_task(const std::string& text) {
+  long i = -1;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, i);
+  if (text.empty() || ec != std::errc() || ptr != end || i < 0)
+    throw ConfigError("--task " + toml_string(text) +
+                      ": must be the id of a manifest entry, an integer >= 0 (0 to "
+                      "n_runs - 1 of DIR/manifest.toml); in a job array give --task "
+                      "$SLURM_ARRAY_TASK_ID (or your batch system's array index) with "
+                      "indices from 0");
+  return i;
+}
+
 int run_one_task(Prepared& p, long i) {
-  if (i < 0 || i >= static_cast<long>(p.tasks.size()))
+  if (i >= static_cast<long>(p.tasks.size()))
     throw ConfigError("--task " + std::to_string(i) + ": the manifest has runs 0 to " +
                       std::to_string(p.tasks.size() - 1) + "; choose one of them");
   find_todo(p, i);
@@ -499,6 +517,15 @@ int run_scan(const ScanOptions& o) {
                       "would run the whole scan); install libopenmpi-dev and rebuild, or "
                       "run without mpirun, with -j N local workers");
 #endif
+  const long task = o.task ? parse_task(*o.task) : -1;
+  if (!o.run_exe.empty()) {
+    std::error_code ec;
+    if (!fs::is_regular_file(o.run_exe, ec) || access(o.run_exe.c_str(), X_OK) != 0)
+      throw ConfigError("--run-exe " + o.run_exe +
+                        ": not an executable file (every run would fail to start); give "
+                        "the path of panoptic or of a script taking the arguments of "
+                        "panoptic run");
+  }
   std::signal(SIGINT, on_stop);
   std::signal(SIGTERM, on_stop);
   if (o.dry_run) {
@@ -536,7 +563,7 @@ int run_scan(const ScanOptions& o) {
   }
 #endif
   Prepared p = prepare(o);
-  if (o.task) return run_one_task(p, *o.task);
+  if (o.task) return run_one_task(p, task);
   find_todo(p, std::nullopt);
   const bool done = execute(p, o.jobs, 1);
   return finish(p, done);

@@ -145,6 +145,7 @@ pid_t start_task(const ScanTask& task) {
   std::vector<char*> argv;
   for (const std::string& a : task.argv) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  const std::string cannot = "panoptic scan: cannot execute " + task.argv.at(0) + ": ";
   const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) throw IoError(std::string("fork failed: ") + std::strerror(errno));
@@ -171,8 +172,10 @@ pid_t start_task(const ScanTask& task) {
     dup2(out, 1);
     dup2(err, 2);
     execv(argv[0], argv.data());
-    const char msg[] = "panoptic scan: cannot execute the run command\n";
-    [[maybe_unused]] auto n = write(2, msg, sizeof msg - 1);
+    const char* why = strerror(errno);  // glibc: a table lookup, safe in the child
+    [[maybe_unused]] auto n = write(2, cannot.data(), cannot.size());
+    n = write(2, why, std::strlen(why));
+    n = write(2, "\n", 1);
     _exit(127);
   }
   return pid;

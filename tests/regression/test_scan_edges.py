@@ -2,7 +2,12 @@
 
 - --force after a change of output.t_end_yr: the runs start again from t = 0 and equal, bit
   for bit, the runs of a new scan of the changed file (they were continued from the
-  final checkpoints of the old end time: other snapshot times, a restart on record)."""
+  final checkpoints of the old end time: other snapshot times, a restart on record);
+- --task with an empty value (an unset $SLURM_ARRAY_TASK_ID) is refused, not taken as
+  "every run" (each task of a job array would run the whole scan into the same files), and
+  an id too large for a long is refused with the value as given;
+- --run-exe that is not an executable file is refused before anything is written, and a
+  run that cannot be executed records the command and the reason."""
 import glob
 import os
 import shutil
@@ -48,6 +53,31 @@ def main():
                 f"every /snapshots dataset equal: {same}, continued from a checkpoint: "
                 f"{restarted}")
 
+    # 2 --task: an empty value and an id beyond a long are refused
+    for bad, shown in [("", '--task "":'), ("99999999999999999999", '"99999999999999999999"'),
+                       ("1.5", '"1.5"'), ("-1", '"-1"')]:
+        out = f"{w}/task"
+        shutil.rmtree(out, ignore_errors=True)
+        p = scan(args.exe, sf, out, "--task", bad, expect=2)
+        c.check(shown in p.stderr and "integer >= 0" in p.stderr and not os.path.exists(out),
+                f"--task {bad!r} refused, nothing written: {p.stderr.strip()[:110]}")
+
+    # 3 --run-exe that cannot run
+    p = scan(args.exe, sf, f"{w}/noexe", "--run-exe", f"{w}/no_such_panoptic", expect=2)
+    c.check("--run-exe" in p.stderr and "no_such_panoptic" in p.stderr and
+            not os.path.exists(f"{w}/noexe"),
+            "--run-exe of no file refused, nothing written: " + p.stderr.strip()[:100])
+    # one that is a file but cannot be executed (its interpreter is missing): the run's
+    # error names it and why
+    bad_exe = f"{w}/bad_interpreter.sh"
+    with open(bad_exe, "w") as f:
+        f.write("#!/no/such/interpreter\n")
+    os.chmod(bad_exe, 0o755)
+    scan(args.exe, sf, f"{w}/badexe", "--run-exe", bad_exe, "--task", "0", expect=127)
+    err = open(f"{w}/badexe/runs/run_00000.status").read()
+    c.check(f"cannot execute {bad_exe}: No such file or directory" in err,
+            "a run that cannot be executed records the command and why: " +
+            [l for l in err.splitlines() if l.startswith("error=")][0][:120])
     c.finish()
 
 
