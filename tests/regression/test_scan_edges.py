@@ -6,6 +6,7 @@
 - --task with an empty value (an unset $SLURM_ARRAY_TASK_ID) is refused, not taken as
   "every run" (each task of a job array would run the whole scan into the same files), and
   an id too large for a long is refused with the value as given;
+- an axis over a key that scan.set also fixes is refused with spaces around the key too;
 - --run-exe that is not an executable file is refused before anything is written, and a
   run that cannot be executed records the command and the reason."""
 import glob
@@ -62,7 +63,14 @@ def main():
         c.check(shown in p.stderr and "integer >= 0" in p.stderr and not os.path.exists(out),
                 f"--task {bad!r} refused, nothing written: {p.stderr.strip()[:110]}")
 
-    # 3 --run-exe that cannot run
+    # 3 an axis also fixed in scan.set, written with spaces (--set reads ' star.mass_msun ')
+    sfs = write_scan(f"{w}/both.toml", [MASS],
+                     sets=SETS + ["output.t_end_yr=100.0", " star.mass_msun = 3.0"])
+    p = scan(args.exe, sfs, f"{w}/both", expect=2)
+    c.check("also fixed in scan.set" in p.stderr and not os.path.exists(f"{w}/both"),
+            "axis and scan.set on one key (with spaces) refused: " + p.stderr.strip()[:100])
+
+    # 4 --run-exe that cannot run
     p = scan(args.exe, sf, f"{w}/noexe", "--run-exe", f"{w}/no_such_panoptic", expect=2)
     c.check("--run-exe" in p.stderr and "no_such_panoptic" in p.stderr and
             not os.path.exists(f"{w}/noexe"),

@@ -239,5 +239,17 @@ TEST(ScanManifest, TaskMessageCarriesTheRunsScene) {
   EXPECT_EQ(u.argv, t.argv);
 }
 
+TEST(ScanManifest, AxisAlsoFixedInSetIsAnErrorWithSpacesToo) {
+  // --set reads " star.mass_msun = 3" as star.mass_msun; the axis would override it
+  // silently
+  for (const char* set :
+       {"star.mass_msun=3", " star.mass_msun = 3", "star.mass_msun\t=3"})
+    EXPECT_NE(error_of("set = [\"" + std::string(set) +
+                       "\"]\n[[axis]]\nkey = \"star.mass_msun\"\nvalues = [1.0]\n")
+                  .find("also fixed in scan.set"),
+              std::string::npos)
+        << set;
+}
+
 }  // namespace
 }  // namespace panoptic
