@@ -205,6 +205,23 @@ ScanAxis read_axis(const toml::table& t, const toml::node& self, bool lhs,
       if (!i || i->get() < 1 || i->get() > 1000000)
         where.fail(*num, "axis " + a.key + ": num must be an integer >= 1, e.g. num = 5");
       a.num = static_cast<long>(i->get());
+      // points that coincide (an integer key rounds them, or lo = hi) would run the
+      // same scene more than once
+      const std::vector<std::string> xs = axis_values(a);
+      std::string shown;
+      bool repeated = false;
+      for (std::size_t k = 0; k < xs.size(); ++k) {
+        repeated = repeated || (k > 0 && xs[k] == xs[k - 1]);
+        if (k < 8) shown += (k ? ", " : "") + xs[k];
+      }
+      if (repeated)
+        where.fail(*num, "axis " + a.key + ": " + what + " = [" + toml_real(a.lo) + ", " +
+                             toml_real(a.hi) + "] with num = " + std::to_string(a.num) +
+                             " gives repeated values (" + shown +
+                             (xs.size() > 8 ? ", ..." : "") + ")" +
+                             (a.type == KeyType::kInt ? ", rounded to integers" : "") +
+                             ": the same scene would run more than once; lower num or "
+                             "list the values with values = [...]");
     } else if (!lhs) {
       where.fail(r, "axis " + a.key + ": a " + what +
                         " range needs num = <number of points> with sampling = \"grid\"");

@@ -87,6 +87,24 @@ TEST(ScanManifest, LinRangeAndIntegerKeys) {
   EXPECT_EQ(value(m, 2, 1), "20");
 }
 
+TEST(ScanManifest, GridRangeOfRepeatedPointsIsAnError) {
+  // lin = [10, 11] with num = 5 over an integer key rounds to 10, 10, 11, 11, 11: three
+  // runs would repeat others; lo = hi with num > 1 likewise
+  const std::string e =
+      error_of("[[axis]]\nkey = \"grid.n_cells\"\nlin = [10, 11]\nnum = 5\n");
+  EXPECT_NE(e.find("axis grid.n_cells"), std::string::npos) << e;
+  EXPECT_NE(e.find("repeated values (10, 10, 11, 11, 11), rounded to integers"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(error_of("[[axis]]\nkey = \"disk.alpha\"\nlog = [1e-3, 1e-3]\nnum = 2\n")
+                .find("repeated values"),
+            std::string::npos);
+  // distinct points pass
+  EXPECT_EQ(error_of("[[axis]]\nkey = \"grid.n_cells\"\nlin = [10, 12]\nnum = 3\n"), "");
+  EXPECT_EQ(error_of("[[axis]]\nkey = \"disk.alpha\"\nlog = [1e-3, 1e-3]\nnum = 1\n"),
+            "");
+}
+
 TEST(ScanManifest, ZipAdvancesTogether) {
   const Manifest m = expand(
       "[[axis]]\nkey = \"star.mass_msun\"\nvalues = [0.5, 1.0, 2.0]\nzip = \"star\"\n"
