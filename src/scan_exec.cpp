@@ -341,22 +341,35 @@ void write_atomically(const fs::path& path, std::string_view text) {
   const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0)
     throw IoError(tmp.string() + ": cannot write (" + std::strerror(errno) + ")");
+  // a failed write (disk full, quota: some file systems report it only at fsync or
+  // close) leaves the old file and no temporary one, which would fill the disk further
+  const auto fail = [&](const std::string& what, int e) {
+    unlink(tmp.c_str());
+    throw IoError(tmp.string() + ": " + what + " (" + std::strerror(e) + ")");
+  };
   std::size_t done = 0;
   while (done < text.size()) {
     const ssize_t n = write(fd, text.data() + done, text.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
-      const int e = errno;
+      const int e = n < 0 ? errno : EIO;
       close(fd);
-      throw IoError(tmp.string() + ": write failed (" + std::strerror(e) + ")");
+      fail("write failed", e);
     }
     done += static_cast<std::size_t>(n);
   }
-  fsync(fd);
-  close(fd);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+  if (fsync(fd) != 0) {
+    const int e = errno;
+    close(fd);
+    fail("fsync failed", e);
+  }
+  if (close(fd) != 0) fail("close failed", errno);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    unlink(tmp.c_str());
     throw IoError(path.string() + ": cannot rename " + tmp.string() + " (" +
-                  std::strerror(errno) + ")");
+                  std::strerror(e) + ")");
+  }
 }
 
 }  // namespace panoptic
