@@ -26,6 +26,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -183,10 +184,11 @@ class Pool {
   //! and a checkpoint of the run's scene (a run stopped by SIGTERM/SIGINT, or one killed
   //! after its last periodic checkpoint), else from the start.
   void start(const ScanTask& t) {
-    std::vector<bool> used(static_cast<std::size_t>(slots_), false);
-    for (const auto& [pid, r] : running_) used[static_cast<std::size_t>(r.slot)] = true;
+    // the lowest free slot (at most as many as run, not -j of them: -j may be huge)
+    std::set<int> used;
+    for (const auto& [pid, r] : running_) used.insert(r.slot);
     int slot = 0;
-    while (used[static_cast<std::size_t>(slot)]) ++slot;
+    while (used.count(slot)) ++slot;
     launch(t, slot, can_continue(t));
   }
   //! A run that ended since the last call, with its record written.

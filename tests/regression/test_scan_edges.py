@@ -8,9 +8,11 @@
   an id too large for a long is refused with the value as given;
 - an axis over a key that scan.set also fixes is refused with spaces around the key too;
 - --run-exe that is not an executable file is refused before anything is written, and a
-  run that cannot be executed records the command and the reason."""
+  run that cannot be executed records the command and the reason;
+- -j far above the number of runs costs no memory per slot."""
 import glob
 import os
+import resource
 import shutil
 
 import h5py
@@ -86,6 +88,13 @@ def main():
     c.check(f"cannot execute {bad_exe}: No such file or directory" in err,
             "a run that cannot be executed records the command and why: " +
             [l for l in err.splitlines() if l.startswith("error=")][0][:120])
+
+    # 5 -j far above the number of runs: each start allocated a flag per slot (250 MB for
+    # -j 2e9, and seconds per start); the memory of the scan and its runs stays small
+    scan(args.exe, sf, f"{w}/many", "-j", "2000000000")
+    rss_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+    c.check((summary(f"{w}/many")["runs/status"] == "completed").all() and rss_mb < 150,
+            f"-j 2000000000 over 2 runs: complete, largest process {rss_mb:.0f} MB")
     c.finish()
 
 
