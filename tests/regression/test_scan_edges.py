@@ -9,11 +9,17 @@
 - an axis over a key that scan.set also fixes is refused with spaces around the key too;
 - --run-exe that is not an executable file is refused before anything is written, and a
   run that cannot be executed records the command and the reason;
-- -j far above the number of runs costs no memory per slot."""
+- -j far above the number of runs costs no memory per slot;
+- SIGTERM to every process of the scan (a batch system ending the job) stops the runs
+  under way with their checkpoints: the scan's forwarded SIGTERM is not taken by a run
+  as a second signal that ends it at once."""
 import glob
 import os
 import resource
 import shutil
+import signal
+import subprocess
+import time
 
 import h5py
 import numpy as np
@@ -95,6 +101,33 @@ def main():
     rss_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
     c.check((summary(f"{w}/many")["runs/status"] == "completed").all() and rss_mb < 150,
             f"-j 2000000000 over 2 runs: complete, largest process {rss_mb:.0f} MB")
+
+    # 6 SIGTERM to every process of the scan, as a batch system ending the job sends it:
+    # each run gets it directly and once more from the scan, which must not be the
+    # "second signal" that ends a run at once; the runs under way checkpoint (exit 75)
+    sft = write_scan(f"{w}/term.toml", ['key = "disk.alpha"\nlog = [1e-4, 1e-3]\nnum = 4'],
+                     sets=["grid.n_cells=32", "output.t_end_yr=1e5", "output.t_first_yr=10.0",
+                           "output.n_snapshots=12"])
+    out = f"{w}/term"
+    proc = subprocess.Popen([args.exe, "scan", sft, "-o", out, "-j", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            start_new_session=True)
+    deadline = time.time() + 60
+    while time.time() < deadline and proc.poll() is None and len(
+            glob.glob(f"{out}/runs/*.h5")) < 2:
+        time.sleep(0.01)
+    time.sleep(0.3)
+    os.killpg(proc.pid, signal.SIGTERM)
+    text = proc.communicate(timeout=60)[0]
+    s = summary(out)
+    started = [(n, st, code) for n, st, code in
+               zip(s["runs/name"], s["runs/status"], s["runs/exit_code"]) if st != "not run"]
+    c.check(proc.returncode == 75 and len(started) >= 2 and
+            all(st == "interrupted" and code == 75 for _, st, code in started),
+            f"SIGTERM to the process group: scan exit {proc.returncode}, the runs under way "
+            f"checkpointed (exit 75): {started}")
+    if proc.returncode != 75:
+        print(text)
     c.finish()
 
 
