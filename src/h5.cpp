@@ -120,8 +120,11 @@ void Handle::reset() {
 
 void quiet_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
-Handle create_file(const std::string& path, bool checksummed_metadata) {
+namespace {
+Handle create(const std::string& path, bool checksummed_metadata, bool in_memory) {
   Handle fapl(ok(H5Pcreate(H5P_FILE_ACCESS), "property list"), H5Pclose);
+  if (in_memory)
+    ok(H5Pset_fapl_core(fapl.get(), 64 << 10, true), "setting the core driver of", path);
   // Root attributes in dense storage (the 1.8 format at least): compact storage caps an
   // attribute at 64 KiB, and config_toml (the resolved scene) or a scan's manifest can
   // be longer (an output_times list of 6 000 times: "creating attribute config_toml
@@ -136,6 +139,15 @@ Handle create_file(const std::string& path, bool checksummed_metadata) {
   return {ok(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()),
              "creating file " + path),
           H5Fclose};
+}
+}  // namespace
+
+Handle create_file(const std::string& path, bool checksummed_metadata) {
+  return create(path, checksummed_metadata, false);
+}
+
+Handle create_file_in_memory(const std::string& path) {
+  return create(path, false, true);
 }
 
 Handle open_file(const std::string& path, bool writable) {

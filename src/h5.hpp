@@ -36,6 +36,12 @@ class Handle {
 //! HDF5 1.10 format, whose metadata carries checksums, so that a damaged file is
 //! reported as such instead of read as garbage (checkpoints).
 Handle create_file(const std::string& path, bool checksummed_metadata = false);
+//! The same, built in memory and written to `path` only when flushed and closed (the
+//! core driver with a backing store): a write that fails there (disk full, quota) is an
+//! error of the flush, and does not leave HDF5 with a half-written file that it fails
+//! to close and crashes on at exit (seen with sec2 and HDF5 1.10.8). For files that
+//! fit in memory (a scan's summary).
+Handle create_file_in_memory(const std::string& path);
 Handle open_file(const std::string& path, bool writable);
 Handle create_group(hid_t parent, const std::string& name);
 Handle open_group(hid_t parent, const std::string& name);

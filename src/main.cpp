@@ -46,11 +46,33 @@ namespace {
 constexpr int kExitStopped = 75;  // EX_TEMPFAIL: stopped, restart from the checkpoint
 
 std::atomic<int> g_signal{0};
-extern "C" void on_signal(int sig) {
+volatile std::sig_atomic_t g_seen_int = 0, g_seen_term = 0, g_parent_stop = 0;
+extern "C" void on_signal(int sig, siginfo_t* info, void*) {
+  // The stop a scan forwards to its runs (the parent's kill) is not a second signal: a
+  // batch system ending a job, or mpirun, signals every process of it, so the run may
+  // have had the same SIGTERM directly, just before or after.
+  const bool from_parent =
+      info != nullptr && info->si_code == SI_USER && info->si_pid == getppid();
+  volatile std::sig_atomic_t& seen = sig == SIGINT ? g_seen_int : g_seen_term;
+  if (seen && !from_parent && !g_parent_stop) {
+    // A second Ctrl-C ends the program at once (the checkpoint on disk stays whole: it
+    // is replaced by rename).
+    std::signal(sig, SIG_DFL);
+    raise(sig);
+    return;
+  }
+  if (from_parent) g_parent_stop = 1;
+  seen = 1;
   g_signal = sig;
-  // A second Ctrl-C ends the program at once (the checkpoint on disk stays whole: it is
-  // replaced by rename).
-  std::signal(sig, SIG_DFL);
+}
+
+void on_stop_signals() {
+  struct sigaction sa {};
+  sa.sa_sigaction = on_signal;
+  sa.sa_flags = SA_SIGINFO;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
 }
 
 //! Thrown to stop the run at the next step or snapshot, with why.
@@ -165,8 +187,7 @@ int run(const RunArgs& a) {
   // the checkpoint and exit 75, instead of killing the process before the handlers are
   // in place. A parent (panoptic scan) may have blocked them until now; a stop that
   // arrived meanwhile is delivered here.
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  on_stop_signals();
   {
     sigset_t stop_signals;
     sigemptyset(&stop_signals);
@@ -567,8 +588,9 @@ int main(int argc, char** argv) {
                        "scan directory (manifest, runs/, summary)");
   scan_cmd->add_option("-j,--jobs", scan_opts.jobs, "runs at once (per MPI rank)")
       ->capture_default_str();
-  scan_cmd->add_option("--task", scan_opts.task,
-                       "run only manifest entry I (job arrays)");
+  std::string task_text;
+  auto* task_opt =
+      scan_cmd->add_option("--task", task_text, "run only manifest entry I (job arrays)");
   scan_cmd->add_flag("--dry-run", scan_opts.dry_run,
                      "validate and print the manifest; write nothing");
   scan_cmd->add_flag("--force", scan_opts.force,
@@ -581,6 +603,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     if (*scan_cmd && !scan_opts.dry_run && scan_opts.dir.empty())
       throw CLI::RequiredError("-o DIR (the scan directory)");
+    if (task_opt->count() > 0) scan_opts.task = task_text;  // checked by run_scan
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -25,6 +26,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -33,6 +35,7 @@
 #include "src/scan_exec.hpp"
 #include "src/scan_manifest.hpp"
 #include "src/scan_summary.hpp"
+#include "src/toml_literal.hpp"
 
 #ifdef PANOPTIC_HAVE_MPI
 // the C API only: OpenMPI and MPICH would pull in their deprecated C++ bindings
@@ -143,6 +146,7 @@ Prepared prepare(const ScanOptions& o) {
     t.log = run_file(p.dir, e.name, "log").string();
     t.err = run_file(p.dir, e.name, "err").string();
     t.status = run_file(p.dir, e.name, "status").string();
+    t.config_toml = p.resolved[i].config_toml;
     t.argv = {exe, "run", p.m.scene.string()};
     for (const std::string& s : p.m.overrides(i))
       t.argv.insert(t.argv.end(), {"--set", s});
@@ -177,14 +181,15 @@ class Pool {
   bool has_free() const { return static_cast<int>(running_.size()) < slots_; }
   bool idle() const { return running_.empty(); }
   //! Starts a run: continued from its checkpoint when an earlier attempt left its output
-  //! and a checkpoint (a run stopped by SIGTERM/SIGINT, or one killed after its last
-  //! periodic checkpoint), else from the start.
+  //! and a checkpoint of the run's scene (a run stopped by SIGTERM/SIGINT, or one killed
+  //! after its last periodic checkpoint), else from the start.
   void start(const ScanTask& t) {
-    std::vector<bool> used(static_cast<std::size_t>(slots_), false);
-    for (const auto& [pid, r] : running_) used[static_cast<std::size_t>(r.slot)] = true;
+    // the lowest free slot (at most as many as run, not -j of them: -j may be huge)
+    std::set<int> used;
+    for (const auto& [pid, r] : running_) used.insert(r.slot);
     int slot = 0;
-    while (used[static_cast<std::size_t>(slot)]) ++slot;
-    launch(t, slot, restart_of(t));
+    while (used.count(slot)) ++slot;
+    launch(t, slot, can_continue(t));
   }
   //! A run that ended since the last call, with its record written.
   std::optional<RunRecord> poll() {
@@ -222,10 +227,6 @@ class Pool {
     Clock::time_point start;
     bool restart = false;
   };
-  static bool restart_of(const ScanTask& t) {
-    std::error_code ec;
-    return fs::exists(t.h5, ec) && fs::exists(checkpoint_path(t.h5), ec);
-  }
   void launch(const ScanTask& t, int slot, bool restart) {
     ScanTask run = t;
     if (restart) {  // "--overwrite" (last) becomes "--restart CHK"
@@ -276,6 +277,28 @@ struct MpiSession {
   ~MpiSession() { MPI_Finalize(); }
   int rank = 0, size = 1;
 };
+
+//! Runs `body` on a rank once the ranks work together. An error there (an I/O error
+//! writing a run's record or the summary, ...) must not just end this rank: the others
+//! would wait for its messages forever, and the job would hang until its time limit. So
+//! the error is printed and the whole job ended (MPI_Abort: mpirun stops every rank, and
+//! the runs die with their ranks, PR_SET_PDEATHSIG); a rerun resumes the scan.
+template <class Body>
+int or_abort(Body&& body) {
+  int code = 1;
+  try {
+    return body();
+  } catch (const Error& e) {
+    std::fprintf(stderr, "panoptic: error: %s\n", e.what());
+    code = e.exit_code();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "panoptic: internal error: %s\n", e.what());
+  }
+  std::fflush(stdout);
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, code);
+  return code;
+}
 
 //! A message from rank 0 if one is waiting: its tag and bytes.
 std::optional<std::pair<int, std::string>> poll_master() {
@@ -435,8 +458,24 @@ int finish(const Prepared& p, bool completed_loop) {
   return c.other > 0 ? kExitStopped : 0;
 }
 
+//! --task I as given: the id of a manifest entry (checked against the manifest by
+//! run_one_task). An empty value (an unset $SLURM_ARRAY_TASK_ID) is refused, not taken
+//! as "every run": each task of the array would run the whole scan.
+long parse_task(const std::string& text) {
+  long i = -1;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, i);
+  if (text.empty() || ec != std::errc() || ptr != end || i < 0)
+    throw ConfigError("--task " + toml_string(text) +
+                      ": must be the id of a manifest entry, an integer >= 0 (0 to "
+                      "n_runs - 1 of DIR/manifest.toml); in a job array give --task "
+                      "$SLURM_ARRAY_TASK_ID (or your batch system's array index) with "
+                      "indices from 0");
+  return i;
+}
+
 int run_one_task(Prepared& p, long i) {
-  if (i < 0 || i >= static_cast<long>(p.tasks.size()))
+  if (i >= static_cast<long>(p.tasks.size()))
     throw ConfigError("--task " + std::to_string(i) + ": the manifest has runs 0 to " +
                       std::to_string(p.tasks.size() - 1) + "; choose one of them");
   find_todo(p, i);
@@ -480,6 +519,15 @@ int run_scan(const ScanOptions& o) {
                       "would run the whole scan); install libopenmpi-dev and rebuild, or "
                       "run without mpirun, with -j N local workers");
 #endif
+  const long task = o.task ? parse_task(*o.task) : -1;
+  if (!o.run_exe.empty()) {
+    std::error_code ec;
+    if (!fs::is_regular_file(o.run_exe, ec) || access(o.run_exe.c_str(), X_OK) != 0)
+      throw ConfigError("--run-exe " + o.run_exe +
+                        ": not an executable file (every run would fail to start); give "
+                        "the path of panoptic or of a script taking the arguments of "
+                        "panoptic run");
+  }
   std::signal(SIGINT, on_stop);
   std::signal(SIGTERM, on_stop);
   if (o.dry_run) {
@@ -494,7 +542,7 @@ int run_scan(const ScanOptions& o) {
 #ifdef PANOPTIC_HAVE_MPI
   if (world > 1) {
     MpiSession mpi;
-    if (mpi.rank != 0) return mpi_worker(mpi, o.jobs);
+    if (mpi.rank != 0) return or_abort([&] { return mpi_worker(mpi, o.jobs); });
     Prepared p;
     int code = 0;
     try {
@@ -507,15 +555,17 @@ int run_scan(const ScanOptions& o) {
       throw;
     }
     for (int r = 1; r < mpi.size; ++r) MPI_Send("0", 1, MPI_CHAR, r, kGo, MPI_COMM_WORLD);
-    find_todo(p, std::nullopt);
-    std::printf("scan: %d MPI ranks, %d run%s at once each\n", mpi.size, o.jobs,
-                o.jobs == 1 ? "" : "s");
-    const bool done = execute(p, o.jobs, mpi.size);
-    return finish(p, done);
+    return or_abort([&] {
+      find_todo(p, std::nullopt);
+      std::printf("scan: %d MPI ranks, %d run%s at once each\n", mpi.size, o.jobs,
+                  o.jobs == 1 ? "" : "s");
+      const bool done = execute(p, o.jobs, mpi.size);
+      return finish(p, done);
+    });
   }
 #endif
   Prepared p = prepare(o);
-  if (o.task) return run_one_task(p, *o.task);
+  if (o.task) return run_one_task(p, task);
   find_todo(p, std::nullopt);
   const bool done = execute(p, o.jobs, 1);
   return finish(p, done);

@@ -12,9 +12,11 @@ namespace panoptic {
 
 struct ScanOptions {
   std::string scan_file;
-  std::string dir;           //!< -o
-  int jobs = 1;              //!< -j: concurrent runs per process
-  std::optional<long> task;  //!< --task I
+  std::string dir;  //!< -o
+  int jobs = 1;     //!< -j: concurrent runs per process
+  //! --task I as given (checked by run_scan: an integer id of the manifest; an empty
+  //! value, an unset $SLURM_ARRAY_TASK_ID, is refused, not taken as "every run")
+  std::optional<std::string> task;
   bool dry_run = false;
   bool force = false;   //!< replace a manifest that differs
   std::string run_exe;  //!< the panoptic that runs the scenes (default: this one)

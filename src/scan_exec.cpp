@@ -15,6 +15,7 @@
 #include <limits>
 #include <sstream>
 
+#include "src/checkpoint.hpp"
 #include "src/error.hpp"
 #include "src/h5.hpp"
 
@@ -98,9 +99,10 @@ std::string hostname() {
 }  // namespace
 
 std::string ScanTask::serialize() const {
-  // NUL-separated fields: id, name, h5, log, err, status, then argv
+  // NUL-separated fields: id, name, h5, log, err, status, config_toml, then argv
   std::string out = std::to_string(id);
-  for (const std::string* s : {&name, &h5, &log, &err, &status}) out += '\0' + *s;
+  for (const std::string* s : {&name, &h5, &log, &err, &status, &config_toml})
+    out += '\0' + *s;
   for (const std::string& a : argv) out += '\0' + a;
   return out;
 }
@@ -115,7 +117,7 @@ ScanTask ScanTask::deserialize(std::string_view bytes) {
     if (b == std::string_view::npos) break;
     a = b + 1;
   }
-  if (f.size() < 7) throw Error("internal error: malformed scan task message");
+  if (f.size() < 8) throw Error("internal error: malformed scan task message");
   ScanTask t;
   t.id = std::stol(f[0]);
   t.name = f[1];
@@ -123,7 +125,8 @@ ScanTask ScanTask::deserialize(std::string_view bytes) {
   t.log = f[3];
   t.err = f[4];
   t.status = f[5];
-  t.argv.assign(f.begin() + 6, f.end());
+  t.config_toml = f[6];
+  t.argv.assign(f.begin() + 7, f.end());
   return t;
 }
 
@@ -142,6 +145,7 @@ pid_t start_task(const ScanTask& task) {
   std::vector<char*> argv;
   for (const std::string& a : task.argv) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  const std::string cannot = "panoptic scan: cannot execute " + task.argv.at(0) + ": ";
   const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) throw IoError(std::string("fork failed: ") + std::strerror(errno));
@@ -168,8 +172,10 @@ pid_t start_task(const ScanTask& task) {
     dup2(out, 1);
     dup2(err, 2);
     execv(argv[0], argv.data());
-    const char msg[] = "panoptic scan: cannot execute the run command\n";
-    [[maybe_unused]] auto n = write(2, msg, sizeof msg - 1);
+    const char* why = strerror(errno);  // glibc: a table lookup, safe in the child
+    [[maybe_unused]] auto n = write(2, cannot.data(), cannot.size());
+    n = write(2, why, std::strlen(why));
+    n = write(2, "\n", 1);
     _exit(127);
   }
   return pid;
@@ -210,6 +216,23 @@ RunRecord finish_task(const ScanTask& task, int wait_status, double wall_s,
     << "\nhost=" << escape(r.host) << "\nerror=" << escape(r.error) << "\n";
   write_atomically(task.status, s.str());
   return r;
+}
+
+bool can_continue(const ScanTask& task) {
+  std::error_code ec;
+  const fs::path chk = checkpoint_path(task.h5);
+  if (!fs::exists(task.h5, ec)) return false;
+  h5::quiet_errors();
+  for (const fs::path& file : {chk, previous_checkpoint_path(chk)}) {
+    if (!fs::exists(file, ec)) continue;
+    try {
+      h5::Handle f = h5::open_file(file.string(), false);
+      return h5::get_attr_string(f.get(), "config_toml") == task.config_toml;
+    } catch (const Error&) {
+      // unreadable: panoptic run --restart falls back on the previous checkpoint
+    }
+  }
+  return false;
 }
 
 std::optional<RunRecord> read_record(const fs::path& status) {
@@ -318,22 +341,35 @@ void write_atomically(const fs::path& path, std::string_view text) {
   const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0)
     throw IoError(tmp.string() + ": cannot write (" + std::strerror(errno) + ")");
+  // a failed write (disk full, quota: some file systems report it only at fsync or
+  // close) leaves the old file and no temporary one, which would fill the disk further
+  const auto fail = [&](const std::string& what, int e) {
+    unlink(tmp.c_str());
+    throw IoError(tmp.string() + ": " + what + " (" + std::strerror(e) + ")");
+  };
   std::size_t done = 0;
   while (done < text.size()) {
     const ssize_t n = write(fd, text.data() + done, text.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
-      const int e = errno;
+      const int e = n < 0 ? errno : EIO;
       close(fd);
-      throw IoError(tmp.string() + ": write failed (" + std::strerror(e) + ")");
+      fail("write failed", e);
     }
     done += static_cast<std::size_t>(n);
   }
-  fsync(fd);
-  close(fd);
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+  if (fsync(fd) != 0) {
+    const int e = errno;
+    close(fd);
+    fail("fsync failed", e);
+  }
+  if (close(fd) != 0) fail("close failed", errno);
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    unlink(tmp.c_str());
     throw IoError(path.string() + ": cannot rename " + tmp.string() + " (" +
-                  std::strerror(errno) + ")");
+                  std::strerror(e) + ")");
+  }
 }
 
 }  // namespace panoptic

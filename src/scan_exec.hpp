@@ -23,6 +23,9 @@ struct ScanTask {
   std::string name;               //!< run_00017
   std::vector<std::string> argv;  //!< the child's command line, argv[0] = executable
   std::string h5, log, err, status;
+  //! the run's resolved scene (its manifest entry's): a checkpoint is continued only
+  //! when it holds this scene
+  std::string config_toml;
 
   std::string serialize() const;
   static ScanTask deserialize(std::string_view bytes);
@@ -50,6 +53,14 @@ pid_t start_task(const ScanTask& task);
 //! atomically to task.status.
 RunRecord finish_task(const ScanTask& task, int wait_status, double wall_s,
                       const std::string& worker);
+
+//! True when the run of `task` can be continued from its checkpoint bit for bit: its
+//! output exists and its checkpoint (or, when that one is unreadable, the previous
+//! checkpoint, which `panoptic run --restart` falls back on) holds exactly the run's
+//! scene, task.config_toml. A checkpoint of another scene (after --force: another end
+//! time or solver setting, which a restart would accept) is not continued: the run
+//! starts again from t = 0, as a new scan of its manifest would run it.
+bool can_continue(const ScanTask& task);
 
 //! Reads a status file; nullopt when absent or unreadable.
 std::optional<RunRecord> read_record(const std::filesystem::path& status);

@@ -205,6 +205,23 @@ ScanAxis read_axis(const toml::table& t, const toml::node& self, bool lhs,
       if (!i || i->get() < 1 || i->get() > 1000000)
         where.fail(*num, "axis " + a.key + ": num must be an integer >= 1, e.g. num = 5");
       a.num = static_cast<long>(i->get());
+      // points that coincide (an integer key rounds them, or lo = hi) would run the
+      // same scene more than once
+      const std::vector<std::string> xs = axis_values(a);
+      std::string shown;
+      bool repeated = false;
+      for (std::size_t k = 0; k < xs.size(); ++k) {
+        repeated = repeated || (k > 0 && xs[k] == xs[k - 1]);
+        if (k < 8) shown += (k ? ", " : "") + xs[k];
+      }
+      if (repeated)
+        where.fail(*num, "axis " + a.key + ": " + what + " = [" + toml_real(a.lo) + ", " +
+                             toml_real(a.hi) + "] with num = " + std::to_string(a.num) +
+                             " gives repeated values (" + shown +
+                             (xs.size() > 8 ? ", ..." : "") + ")" +
+                             (a.type == KeyType::kInt ? ", rounded to integers" : "") +
+                             ": the same scene would run more than once; lower num or "
+                             "list the values with values = [...]");
     } else if (!lhs) {
       where.fail(r, "axis " + a.key + ": a " + what +
                         " range needs num = <number of points> with sampling = \"grid\"");
@@ -225,6 +242,11 @@ std::string run_name(long id, long n) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "run_%0*ld", width, id);
   return buf;
+}
+
+std::string trimmed(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t");
+  return a == std::string::npos ? "" : s.substr(a, s.find_last_not_of(" \t") - a + 1);
 }
 
 std::string hex64(std::uint64_t x) {
@@ -406,7 +428,7 @@ Manifest expand_scan_text(std::string_view text, const std::string& name,
         if (b.key == a.key)
           where.fail(*arr->get(k), "axis " + a.key + " appears twice; merge the two");
       for (const std::string& f : m.fixed)
-        if (f.substr(0, f.find('=')) == a.key)
+        if (trimmed(f.substr(0, f.find('='))) == a.key)  // as --set reads the key
           where.fail(*arr->get(k),
                      "axis " + a.key + " is also fixed in scan.set; remove one of them");
       m.axes.push_back(std::move(a));

@@ -131,12 +131,21 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
     }
   }
 
-  // --- HDF5, written to a temporary file and renamed
+  // --- HDF5, built in memory, written to a temporary file and renamed
   const fs::path h5path = dir / "summary.h5";
   const fs::path tmp = dir / ("summary.h5.tmp" + std::to_string(getpid()));
+  // a failed write (disk full, quota) leaves the old summary and no temporary file
+  // (after the rename there is none to remove)
+  struct RemoveTemporary {
+    const fs::path& tmp;
+    ~RemoveTemporary() {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+    }
+  } remove_temporary{tmp};
   h5::quiet_errors();
   {
-    h5::Handle f = h5::create_file(tmp.string());
+    h5::Handle f = h5::create_file_in_memory(tmp.string());
     h5::set_attr(f.get(), "scene", m.scene.string());
     h5::set_attr(f.get(), "sampling", m.sampling);
     std::string axes;

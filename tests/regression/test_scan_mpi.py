@@ -1,11 +1,16 @@
 """`mpirun --oversubscribe -n 3 panoptic scan` over 8 runs gives the same summary table as
 the serial scan: every axis value, status, CVODE step count and /summary outcome equal
 bit for bit, and each equal to the run's own file; the runs were spread over more than
-one rank. Exits 77 (skipped) when panoptic is built without MPI or mpirun is missing."""
+one rank. An I/O error on one rank (a run's status record cannot be written) ends the
+whole job with the error, instead of leaving the other ranks waiting for it until the
+batch system's time limit. Exits 77 (skipped) when panoptic is built without MPI or
+mpirun is missing."""
 import os
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 import numpy as np
 
@@ -65,6 +70,24 @@ def main():
     ok = Z.shape == (2, 4) and all(Z[list(ys).index(y[i]), list(xs).index(x[i])] ==
                                    b["outcome/m_pl_coag"][i] for i in range(8))
     c.check(ok, "the map's cells hold each run's value at its (alpha, mass)")
+    # an error on a rank ends the job: run_00001.status cannot be written (a directory
+    # stands in its place), whichever rank runs it
+    bad = f"{args.workdir}/io_error"
+    shutil.rmtree(bad, ignore_errors=True)
+    os.makedirs(f"{bad}/runs/run_00001.status/x")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    proc = subprocess.Popen(["mpirun", "--oversubscribe", "-n", "2", args.exe, "scan", sf,
+                             "-o", bad], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True, env=env, start_new_session=True)
+    t0 = time.time()
+    try:
+        text = proc.communicate(timeout=60)[0]
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        text = proc.communicate()[0] + "\n(killed after 60 s: the job hung)"
+    c.check(proc.returncode not in (0, -signal.SIGKILL) and "run_00001.status" in text,
+            f"an I/O error on a rank ends the job in {time.time() - t0:.1f} s, exit "
+            f"{proc.returncode}: {[l for l in text.splitlines() if 'panoptic: error' in l][:1]}")
     c.finish()
 
 

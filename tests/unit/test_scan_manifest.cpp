@@ -9,6 +9,7 @@
 #include <string>
 
 #include "src/error.hpp"
+#include "src/scan_exec.hpp"
 #include "src/scan_manifest.hpp"
 
 namespace panoptic {
@@ -84,6 +85,24 @@ TEST(ScanManifest, LinRangeAndIntegerKeys) {
   EXPECT_EQ(value(m, 0, 1), "10");
   EXPECT_EQ(value(m, 1, 1), "15");
   EXPECT_EQ(value(m, 2, 1), "20");
+}
+
+TEST(ScanManifest, GridRangeOfRepeatedPointsIsAnError) {
+  // lin = [10, 11] with num = 5 over an integer key rounds to 10, 10, 11, 11, 11: three
+  // runs would repeat others; lo = hi with num > 1 likewise
+  const std::string e =
+      error_of("[[axis]]\nkey = \"grid.n_cells\"\nlin = [10, 11]\nnum = 5\n");
+  EXPECT_NE(e.find("axis grid.n_cells"), std::string::npos) << e;
+  EXPECT_NE(e.find("repeated values (10, 10, 11, 11, 11), rounded to integers"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(error_of("[[axis]]\nkey = \"disk.alpha\"\nlog = [1e-3, 1e-3]\nnum = 2\n")
+                .find("repeated values"),
+            std::string::npos);
+  // distinct points pass
+  EXPECT_EQ(error_of("[[axis]]\nkey = \"grid.n_cells\"\nlin = [10, 12]\nnum = 3\n"), "");
+  EXPECT_EQ(error_of("[[axis]]\nkey = \"disk.alpha\"\nlog = [1e-3, 1e-3]\nnum = 1\n"),
+            "");
 }
 
 TEST(ScanManifest, ZipAdvancesTogether) {
@@ -212,6 +231,42 @@ TEST(ScanManifest, ManifestBodyIgnoresComments) {
   const Manifest m = expand("[[axis]]\nkey = \"star.mass_msun\"\nvalues = [1.0]\n");
   EXPECT_EQ(manifest_body(m.to_toml("# a header\n# more\n")), manifest_body(m.to_toml()));
   EXPECT_EQ(manifest_body(m.to_toml()), m.to_toml());
+}
+
+TEST(ScanManifest, TaskMessageCarriesTheRunsScene) {
+  // An MPI worker decides from task.config_toml whether a checkpoint may be continued:
+  // the message must carry it whole (multi-line, quotes), and the command line after it.
+  ScanTask t;
+  t.id = 17;
+  t.name = "run_00017";
+  t.h5 = "/d/runs/run_00017.h5";
+  t.log = "/d/runs/run_00017.log";
+  t.err = "/d/runs/run_00017.err";
+  t.status = "/d/runs/run_00017.status";
+  t.config_toml = "[star]\nmass_msun = 1.5\n[disk]\nmodel = \"lbp\"\n";
+  t.argv = {"/bin/panoptic", "run", "s.toml", "--set",
+            "a.b=1",         "-o",  t.h5,     "--overwrite"};
+  const ScanTask u = ScanTask::deserialize(t.serialize());
+  EXPECT_EQ(u.id, t.id);
+  EXPECT_EQ(u.name, t.name);
+  EXPECT_EQ(u.h5, t.h5);
+  EXPECT_EQ(u.log, t.log);
+  EXPECT_EQ(u.err, t.err);
+  EXPECT_EQ(u.status, t.status);
+  EXPECT_EQ(u.config_toml, t.config_toml);
+  EXPECT_EQ(u.argv, t.argv);
+}
+
+TEST(ScanManifest, AxisAlsoFixedInSetIsAnErrorWithSpacesToo) {
+  // --set reads " star.mass_msun = 3" as star.mass_msun; the axis would override it
+  // silently
+  for (const char* set :
+       {"star.mass_msun=3", " star.mass_msun = 3", "star.mass_msun\t=3"})
+    EXPECT_NE(error_of("set = [\"" + std::string(set) +
+                       "\"]\n[[axis]]\nkey = \"star.mass_msun\"\nvalues = [1.0]\n")
+                  .find("also fixed in scan.set"),
+              std::string::npos)
+        << set;
 }
 
 }  // namespace
