@@ -38,7 +38,8 @@ from postprocess.reader import load_run
 
 M_EARTH = 5.972e27            # [g], src/units.hpp kMearth
 MYR = 1e6 * 3.156e7           # [s], src/units.hpp kMyr
-FORMED_FRACTION = 1e-6        # Sigma_pl > this x initial Sigma_d: planetesimals formed
+FORMED_FRACTION = 1e-6        # Sigma_pl > this x the largest initial Sigma_d: formed
+                              # (src/diagnostics.cpp; /summary/formed_threshold)
 NO_DUST_FRACTION = 1e-6       # Sigma_d < this x initial Sigma_d: cell counted as dust-free
 ZONE_MARGIN = 4.0             # Sigma_pl figure: r range = planetesimal zone widened x4
 DEPLETION_DECADES = 4         # dust-to-gas map: colours resolve this far below the initial
@@ -53,8 +54,9 @@ ZONE_EDGE_STYLE = {"colors": "w", "linewidths": 1.0,     # outlined along the ce
                    "path_effects": [patheffects.withStroke(linewidth=2.4, foreground="k")]}
 NO_DUST_LABEL = (rf"no dust ($\Sigma_\mathrm{{d}} < 10^{{{np.log10(NO_DUST_FRACTION):.0f}}}"
                  r"\,\Sigma_\mathrm{d,0}$)")
-ZONE_LABEL = (rf"planetesimals ($\Sigma_\mathrm{{pl}} > 10^{{{np.log10(FORMED_FRACTION):.0f}}}"
-              r"\,\Sigma_\mathrm{d,0}$)")
+FORMED_TEX = (rf"10^{{{np.log10(FORMED_FRACTION):.0f}}}\,"
+              r"\max\,\Sigma_\mathrm{d,0}")
+ZONE_LABEL = rf"planetesimals ($\Sigma_\mathrm{{pl}} > {FORMED_TEX}$)"
 NO_DUST_COLOR = "0.82"
 CHANNELS = (("coag", "direct coagulation", "tab:green"),
             ("si", "streaming instability", "tab:purple"))
@@ -143,6 +145,17 @@ def plural(n, word):
 def initial_dust(run):
     """Initial Sigma_d (N,) [g cm^-2]: the first snapshot."""
     return run.snapshots["sigma_d"][0]
+
+
+def formed_threshold(run):
+    """Sigma_pl [g cm^-2] above which a cell counts as having formed planetesimals: the
+    run's /summary/formed_threshold (FORMED_FRACTION of the largest initial Sigma_d, the
+    threshold of /summary's r_min_pl_*, r_max_pl_* and t_first_pl), else (a file without
+    it: killed or older) the same computed from the first snapshot."""
+    value = run.summary.get("formed_threshold")
+    if value is not None and np.isfinite(value) and value > 0:
+        return float(value)
+    return FORMED_FRACTION * float(np.max(initial_dust(run)))
 
 
 def sigma_pl_total(run):
@@ -250,7 +263,7 @@ def plot_map(run, out_path, field, quantity, cmap, decades, vmax=None, mask_no_d
     diverging: centred on the initial dust-to-gas ratio (dust_to_gas_reference), at least
     a decade each side. Cells with Sigma_d < NO_DUST_FRACTION x initial Sigma_d are grey
     when mask_no_dust. Overlays: snow line, planetesimal-forming zone (Sigma_pl >
-    FORMED_FRACTION x initial Sigma_d, hatched in hatch_color and outlined) and
+    formed_threshold, hatched in hatch_color and outlined) and
     t_first_pl(r).
     """
     snaps = run.snapshots
@@ -363,12 +376,12 @@ def draw_diverging(fig, ax, run, t, values, limits, colour_map, quantity):
 
 
 def overlay_planetesimals(ax, run, keep, t, hatch_color=ZONE_HATCH_COLOR):
-    """Hatch the snapshot cells keep (times t [yr]) where Sigma_pl > FORMED_FRACTION x
-    initial Sigma_d, draw t_first_pl(r) [yr]; returns the legend handles."""
+    """Hatch the snapshot cells keep (times t [yr]) where Sigma_pl > formed_threshold,
+    draw t_first_pl(r) [yr]; returns the legend handles."""
     handles = []
     sigma_pl = sigma_pl_total(run)
     if sigma_pl is not None:
-        formed = sigma_pl[keep] > FORMED_FRACTION * initial_dust(run)[None, :]
+        formed = sigma_pl[keep] > formed_threshold(run)
         if formed.any():
             x_edges, y_edges = run.r_f, time_edges(t)
             ax.add_collection(PolyCollection(mask_rectangles(formed, x_edges, y_edges),
@@ -479,7 +492,7 @@ def set_decades_ylim(ax, values, decades):
 
 def plot_sigma_pl(run, out_path):
     """Sigma_pl(r) [g cm^-2] by channel and in total at the last snapshot, with Sigma_g
-    and the initial Sigma_d for scale and the formation threshold."""
+    and the initial Sigma_d for scale and the formation threshold (formed_threshold)."""
     snaps = run.snapshots
     total = sigma_pl_total(run)
     if total is None:
@@ -495,9 +508,9 @@ def plot_sigma_pl(run, out_path):
             label=rf"$\Sigma_\mathrm{{d}}$ at {plot.format_years(run.time[0])}")
     ax.plot(run.r_c, plot.masked_log(snaps["sigma_d"][last]), color="tab:brown", lw=1.0,
             alpha=0.6, label=rf"$\Sigma_\mathrm{{d}}$ at {plot.format_years(run.time[last])}")
-    threshold = FORMED_FRACTION * sigma_d0
-    ax.plot(run.r_c, plot.masked_log(threshold), color="0.6", lw=0.8, ls="-.",
-            label=rf"threshold $10^{{{np.log10(FORMED_FRACTION):.0f}}}\,\Sigma_\mathrm{{d,0}}$")
+    threshold = np.full(run.r_c.shape, formed_threshold(run))
+    ax.plot(run.r_c, threshold, color="0.6", lw=0.8, ls="-.",
+            label=rf"threshold ${FORMED_TEX}$")
     shown = [snaps["sigma_g"][last], sigma_d0, threshold]
     formed_any = False
     for channel, what, colour in CHANNELS:
@@ -529,7 +542,7 @@ def plot_sigma_pl(run, out_path):
     ax.set_ylim(bottom / 3.0, top * 3.0)
     if not formed_any:
         note(ax, f"no planetesimals formed by {plot.format_years(run.time[last])}\n"
-                 r"($\Sigma_\mathrm{pl} \leq 10^{-6}\,\Sigma_\mathrm{d,0}$ everywhere)", y=0.2)
+                 rf"($\Sigma_\mathrm{{pl}} \leq {FORMED_TEX}$ everywhere)", y=0.2)
     if (x_lo, x_hi) != (run.r_f[0], run.r_f[-1]):
         ax.plot([], [], ls="none", label=f"($r$ zoomed to the planetesimals;\n grid "
                 f"{run.r_f[0]:.3g}$-${run.r_f[-1]:.4g} au)")

@@ -113,7 +113,8 @@ def add_diagnostics(path, ref, planetesimals="formed", killed=False, names=None)
     Growth field phi; pebble monitors (/pebbles/r_au, attr names, snapshot pebble_flux
     [g s^-1] and m_through [g]); /timeseries (time, pebble_flux, m_through, mass_budget)
     on 4 samples per snapshot interval; planetesimals="formed": sigma_pl(_coag, _si),
-    m_pl_*, t_first_pl growing in 1.5-4 au after 1e3 yr, "none": the same fields all
+    m_pl_*, t_first_pl growing in 1.5-4 au after 1e3 yr (formed: Sigma_pl above 1e-6 of
+    the largest initial Sigma_d, /summary/formed_threshold, as the C++), "none": the same fields all
     zero/NaN, None: no planetesimal fields; /summary unless killed. killed=True also
     leaves /timeseries/time two rows shorter than the other /timeseries datasets (the
     writer appends time last). Returns a dict of what was written.
@@ -127,7 +128,8 @@ def add_diagnostics(path, ref, planetesimals="formed", killed=False, names=None)
     si = np.where(zone[None, :] & (r_c[None, :] >= 3.0), 1e-4 * sigma_d0 * growth, 0.0)
     if planetesimals == "none":
         coag, si = np.zeros_like(coag), np.zeros_like(si)
-    formed = (coag + si) > 1e-6 * sigma_d0[None, :]
+    threshold = 1e-6 * sigma_d0.max()     # src/diagnostics.cpp kFormedFraction
+    formed = (coag + si) > threshold
     t_first = np.full((nt, n), np.nan)
     for i in range(nt):
         first = formed[: i + 1].argmax(axis=0)
@@ -171,14 +173,15 @@ def add_diagnostics(path, ref, planetesimals="formed", killed=False, names=None)
                        "m_peb_snowline": m_through[-1, 0] / M_EARTH,
                        "m_peb_r_in": m_through[-1, -1] / M_EARTH,
                        "m_dust_final": ref["m_dust"][-1] / M_EARTH,
-                       "budget_error": error[-1] / ref["m_dust"][0]}
-            for c, mask in (("coag", coag[-1] > 1e-6 * sigma_d0), ("si", si[-1] > 1e-6 * sigma_d0)):
+                       "budget_error": error[-1] / ref["m_dust"][0], "formed_threshold": threshold}
+            for c, mask in (("coag", coag[-1] > threshold), ("si", si[-1] > threshold)):
                 scalars[f"r_min_pl_{c}"] = r_c[mask].min() if mask.any() else np.nan
                 scalars[f"r_max_pl_{c}"] = r_c[mask].max() if mask.any() else np.nan
             for name, value in scalars.items():
                 write_dataset(summary, name, [value], "", name)
             write_dataset(summary, "t_first_pl", t_first[-1], "yr", "first formation")
     return {"series": series, "r_mon": r_mon, "t_first": t_first[-1], "m_coag": m_coag,
+            "threshold": threshold,
             "n_series": len(ts_time) - (2 if killed else 0)}
 
 
@@ -439,6 +442,61 @@ def check_plot_run_helpers(tmp):
     return "plot_run helpers: time_edges, mask_rectangles, mask_outline, log_limits, unit_tex"
 
 
+@contextlib.contextmanager
+def captured_figures():
+    """Collect the figures plot_run saves (list of Figure), still writing them."""
+    figures, original = [], plot_run.save
+
+    def keep(fig, run, out_path):
+        figures.append(fig)
+        original(fig, run, out_path)
+    plot_run.save = keep
+    try:
+        yield figures
+    finally:
+        plot_run.save = original
+
+
+def check_plot_run_formed_threshold(tmp):
+    # Sigma_pl at the outer edge above 1e-6 of the cell's own initial Sigma_d but below
+    # /summary/formed_threshold (1e-6 of the largest): not a planetesimal zone (the C++
+    # counts no cell there: r_max_pl_*, t_first_pl), so neither hatched nor zoomed to
+    path = os.path.join(tmp, "outer_edge.h5")
+    ref, diag = write_full_run(path)
+    threshold = diag["threshold"]
+    sigma_d0 = ref["sigma_d"][0]
+    edge = (ref["r_c"] > 100.0) & (sigma_d0 > 0)
+    assert edge.any() and np.all(0.01 * threshold > 1e-6 * sigma_d0[edge])
+    with h5py.File(path, "a") as f:
+        for name in ("sigma_pl_si", "sigma_pl"):
+            data = f["snapshots"][name][()]
+            data[1:, edge] += 0.01 * threshold
+            f["snapshots"][name][...] = data
+    run = reader.load_run(path)
+    assert plot_run.formed_threshold(run) == threshold
+    with captured_figures() as figures:
+        plot_run.plot_sigma_pl(run, os.path.join(tmp, "outer_edge_pl.png"))
+        plot_run.plot_map(run, os.path.join(tmp, "outer_edge_St.png"), **dict(plot_run.MAPS)[
+            "rt_St.png"])
+    x_hi = figures[0].axes[0].get_xlim()[1]
+    assert x_hi < 20.0, x_hi       # zoomed to the 1.5-4 au zone, widened 4x
+    hatched = [c for c in figures[1].axes[0].collections if c.get_hatch()]
+    boxes = np.concatenate([box.vertices for box in hatched[0].get_paths()])
+    assert boxes[:, 0].max() < 4.5, boxes[:, 0].max()
+    last_row = boxes[:, 1].max()
+    formed_last = np.zeros(len(ref["r_c"]), bool)
+    for box in hatched[0].get_paths():
+        x0, x1 = box.vertices[:, 0].min(), box.vertices[:, 0].max()
+        if np.isclose(box.vertices[:, 1].max(), last_row):
+            formed_last |= (ref["r_c"] > x0) & (ref["r_c"] < x1)
+    assert np.array_equal(formed_last, np.isfinite(run.summary["t_first_pl"]))
+    with h5py.File(path, "a") as f:      # a killed run: no /summary, the same threshold
+        del f["summary"]
+    assert np.isclose(plot_run.formed_threshold(reader.load_run(path)), threshold, rtol=1e-14)
+    return ("plot_run: the planetesimal zone is Sigma_pl > /summary/formed_threshold (not "
+            "1e-6 of each cell's Sigma_d): Sigma_pl figure's zoom, r-t hatching = t_first_pl")
+
+
 def check_i0e_vs_numpy(tmp):
     x = np.concatenate([np.linspace(0.0, 60.0, 60001), np.geomspace(1e-10, 700.0, 20001)])
     ref = np.i0(x) * np.exp(-x)
@@ -558,7 +616,7 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
           check_reader_timeseries_zero_rows, check_reader_monitor_names,
           check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
-          check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full,
+          check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full, check_plot_run_formed_threshold,
           check_plot_run_transport_only, check_plot_run_degraded,
           check_plot_run_failure_status, check_plot_run_single_snapshot]
 
