@@ -417,10 +417,14 @@ def pebble_series(run):
     raise Skip("no pebble-flux data (/timeseries or /snapshots/pebble_flux)")
 
 
-def monitor_label(name, r_au):
-    """'snow line (2.73 au)'; a name that already is the radius ('10 au') alone."""
+def monitor_label(name, r_au, snow_line=True):
+    """'snow line (2.73 au)'; a name that already is the radius ('10 au') alone. With
+    snow_line False (snowline.enabled = false) the monitor panoptic names "snow line" is
+    only where T = T_sub, and labelled so."""
     plain = f"{r_au:.3g} au"
     pretty = {"r_in": r"$r_\mathrm{in}$", "r_out": r"$r_\mathrm{out}$"}.get(name, name)
+    if name == "snow line" and not snow_line:
+        pretty = r"$T = T_\mathrm{sub}$, snow line off"
     return name if name == plain else f"{pretty} ({plain})"
 
 
@@ -442,10 +446,12 @@ def plot_pebble_flux(run, out_path):
         final = mass[-1, k] if len(mass) else np.nan
         # inner monitors drawn wider, so that coinciding curves stay visible
         width = 1.2 + 1.0 * (len(order) - 1 - n) / max(len(order) - 1, 1)
+        snow_line = bool(np.isfinite(run.r_snow_au))
         style = {"color": MONITOR_COLORS[n % len(MONITOR_COLORS)], "lw": width,
-                 "ls": "--" if names[k] == "snow line" else "-"}
+                 "ls": "--" if names[k] == "snow line" and snow_line else "-"}
         ax_f.plot(time[positive], plot.masked_log(flux[positive, k]),
-                  label=f"{monitor_label(names[k], r_au[k])}: {final:.3g} " + r"$M_\oplus$",
+                  label=f"{monitor_label(names[k], r_au[k], snow_line)}: {final:.3g} "
+                        + r"$M_\oplus$",
                   **style)
         ax_m.plot(time[positive], plot.masked_log(mass[positive, k]), **style)
         outward |= bool(np.any(flux[positive, k] < 0))
@@ -458,8 +464,9 @@ def plot_pebble_flux(run, out_path):
     if np.any(positive):
         ax_m.set_xlim(time[positive].min(), time[positive].max())
         label_minor_log_ticks(ax_m.xaxis, time[positive].min(), time[positive].max())
+    columns = 3 if np.isfinite(run.r_snow_au) else 2     # room for the T_sub label
     ax_f.legend(loc="lower left", bbox_to_anchor=(0.0, 1.01, 1.0, 0.1), mode="expand",
-                ncol=min(3, len(order)), fontsize=7.5, frameon=False, borderaxespad=0.0,
+                ncol=min(columns, len(order)), fontsize=7.5, frameon=False, borderaxespad=0.0,
                 title=f"monitor: total mass through by {plot.format_years(time[-1])}",
                 title_fontsize=7.5)
     if outward:

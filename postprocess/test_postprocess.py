@@ -497,6 +497,36 @@ def check_plot_run_formed_threshold(tmp):
             "1e-6 of each cell's Sigma_d): Sigma_pl figure's zoom, r-t hatching = t_first_pl")
 
 
+def check_snow_line_off(tmp):
+    # snowline.enabled = false: panoptic still writes /disk r_snow_au (where T = T_sub)
+    # and a pebble monitor named "snow line" there; the figures must not show a snow line
+    path = os.path.join(tmp, "snow_off.h5")
+    write_full_run(path)
+    with h5py.File(path, "a") as f:
+        f.attrs["config_toml"] = CONFIG_TOML + "\n[snowline]\nenabled = false\nf_ice = 0.5\n"
+    run = reader.load_run(path)
+    assert np.isnan(run.r_snow_au) and run.pebble_names[0] == "snow line"
+    assert run.config["snowline"]["enabled"] is False
+    labels = []
+    with captured_figures() as figures:
+        plot_run.plot_map(run, os.path.join(tmp, "snow_off_St.png"),
+                          **dict(plot_run.MAPS)["rt_St.png"])
+        plot_run.plot_pebble_flux(run, os.path.join(tmp, "snow_off_flux.png"))
+    for fig in figures:
+        for ax in fig.axes:
+            if ax.get_legend() is not None:
+                labels += [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels and not any(text.startswith("snow line") for text in labels), labels
+    assert any("snow line off" in text for text in labels), labels
+    fig, ax = plot.new_figure()
+    plot.mark_snow_line(ax, run)
+    assert not ax.lines
+    with h5py.File(path, "a") as f:      # the same file with the snow line on: drawn
+        f.attrs["config_toml"] = CONFIG_TOML + "\n[snowline]\nenabled = true\n"
+    assert reader.load_run(path).r_snow_au == SNOW_AU
+    return "snowline.enabled = false: no snow line drawn or named (r_snow_au NaN), T_sub monitor labelled"
+
+
 def check_i0e_vs_numpy(tmp):
     x = np.concatenate([np.linspace(0.0, 60.0, 60001), np.geomspace(1e-10, 700.0, 20001)])
     ref = np.i0(x) * np.exp(-x)
@@ -617,6 +647,7 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
           check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
           check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full, check_plot_run_formed_threshold,
+          check_snow_line_off,
           check_plot_run_transport_only, check_plot_run_degraded,
           check_plot_run_failure_status, check_plot_run_single_snapshot]
 
