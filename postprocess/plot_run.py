@@ -393,10 +393,11 @@ def overlay_planetesimals(ax, run, keep, t, hatch_color=ZONE_HATCH_COLOR):
                                  label=ZONE_LABEL))
     t_first = t_first_pl(run)
     if t_first is not None and np.isfinite(t_first).any():
-        early = np.isfinite(t_first) & (t_first < time_edges(t)[0])
+        bottom = time_edges(t)[0]    # the axis starts below the first snapshot t[0]
+        early = np.isfinite(t_first) & (t_first < bottom)
         label = r"$t_\mathrm{first\,pl}(r)$"
         if early.any():
-            label += (f" ({plural(early.sum(), 'cell')} before {plot.format_years(t[0])},"
+            label += (f" ({plural(early.sum(), 'cell')} before {plot.format_years(bottom)},"
                       " off the axis)")
         line, = ax.plot(run.r_c, t_first, label=label, **T_FIRST_STYLE)
         handles.append(line)

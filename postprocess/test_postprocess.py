@@ -527,6 +527,28 @@ def check_snow_line_off(tmp):
     return "snowline.enabled = false: no snow line drawn or named (r_snow_au NaN), T_sub monitor labelled"
 
 
+def check_t_first_off_axis_label(tmp):
+    # two snapshots, 0 and 1e6 yr: the r-t map's time axis starts at the row's lower edge
+    # 10^5.5 yr; the cells that formed before it (all, here: after 1e3 yr) are off the axis
+    path = os.path.join(tmp, "two_snapshots.h5")
+    write_full_run(path, time_yr=np.array([0.0, 1e6]))
+    with h5py.File(path, "a") as f:      # formed between the snapshots, as in a real run
+        t_first = f["summary/t_first_pl"][()]
+        t_first[np.isfinite(t_first)] = np.geomspace(2e3, 1e6, np.isfinite(t_first).sum())
+        f["summary/t_first_pl"][...] = t_first
+    run = reader.load_run(path)
+    t_first = run.summary["t_first_pl"]
+    with captured_figures() as figures:
+        plot_run.plot_map(run, os.path.join(tmp, "two_St.png"), **dict(plot_run.MAPS)["rt_St.png"])
+    ax = figures[0].axes[0]
+    bottom = ax.get_ylim()[0]
+    assert np.isclose(bottom, 10 ** 5.5), bottom
+    label = [t.get_text() for t in ax.get_legend().get_texts() if "first" in t.get_text()][0]
+    n_early = int(np.sum(t_first < bottom))
+    assert n_early > 0 and f"{n_early} cells before {plot.format_years(bottom)}, off" in label, label
+    return f"r-t map: t_first_pl cells below the time axis counted against its bottom ({label})"
+
+
 def check_i0e_vs_numpy(tmp):
     x = np.concatenate([np.linspace(0.0, 60.0, 60001), np.geomspace(1e-10, 700.0, 20001)])
     ref = np.i0(x) * np.exp(-x)
@@ -647,7 +669,7 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
           check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
           check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full, check_plot_run_formed_threshold,
-          check_snow_line_off,
+          check_snow_line_off, check_t_first_off_axis_label,
           check_plot_run_transport_only, check_plot_run_degraded,
           check_plot_run_failure_status, check_plot_run_single_snapshot]
 
