@@ -19,7 +19,7 @@ import warnings
 import h5py
 import numpy as np
 
-from postprocess import analytic, plot, plot_run, reader
+from postprocess import analytic, plot, plot_run, plot_scan, reader
 
 AU = 1.496e13    # [cm]
 YR = 3.156e7     # [s]
@@ -549,6 +549,99 @@ def check_t_first_off_axis_label(tmp):
     return f"r-t map: t_first_pl cells below the time axis counted against its bottom ({label})"
 
 
+def write_scan_summary(path_dir, axes, status, outcomes, sampling):
+    """DIR/summary.h5 in the layout of `panoptic scan` (README, Scans): axes {key: (values,
+    spacing)}, status (list of str), outcomes {name: (values, units)}."""
+    os.makedirs(path_dir, exist_ok=True)
+    with h5py.File(os.path.join(path_dir, "summary.h5"), "w") as f:
+        f.attrs["axes"] = ",".join(axes)
+        f.attrs["sampling"] = sampling
+        for key, (values, spacing) in axes.items():
+            f.create_dataset(f"axes/{key}", data=np.asarray(values, float))
+            f[f"axes/{key}"].attrs["spacing"] = spacing
+        f.create_dataset("runs/status", data=np.array([x.encode() for x in status]))
+        f.create_dataset("runs/name", data=np.array([f"run_{i:05d}".encode()
+                                                     for i in range(len(status))]))
+        for name, (values, units) in outcomes.items():
+            f.create_dataset(f"outcome/{name}", data=np.asarray(values, float))
+            f[f"outcome/{name}"].attrs["units"] = units
+
+
+def marker_lines(ax, label):
+    """The Line2D of ax with the given legend label."""
+    return [line for line in ax.get_lines() if line.get_label() == label]
+
+
+def check_plot_scan(tmp):
+    # 3 x 2 grid: run 1 failed (NaN outcomes), run 4 completed without planetesimals
+    # (t_first_pl_min NaN)
+    mass, alpha = np.repeat([0.5, 1.0, 2.0], 2), np.tile([1e-4, 1e-2], 3)
+    status = ["completed", "failed", "completed", "completed", "completed", "completed"]
+    m_pl = np.array([1.0, np.nan, 3.0, 0.0, 5.0, 6.0])
+    t_first = np.array([700.0, np.nan, 300.0, np.nan, 100.0, 50.0])
+    grid_dir = os.path.join(tmp, "scan_grid")
+    write_scan_summary(grid_dir, {"star.mass_msun": (mass, "list"), "disk.alpha": (alpha, "log")},
+                       status, {"m_pl_coag": (m_pl, "M_earth"), "t_first_pl_min": (t_first, "yr")},
+                       "grid")
+    summary = plot_scan.load_summary(grid_dir)
+    fig = plot_scan.line_figure(summary, "star.mass_msun", ["m_pl_coag", "t_first_pl_min"],
+                                os.path.join(tmp, "scan_lines.png"))
+    ax_m, ax_t = fig.axes[:2]
+    # the failed run along the bottom of the panel (axes coordinates), not at a value
+    cross, = marker_lines(ax_m, "not completed")
+    to_axes = (cross.get_transform() - ax_m.transAxes).transform(cross.get_xydata())
+    assert np.allclose(cross.get_xdata(), [0.5]) and np.allclose(to_axes[:, 1], 0.03), to_axes
+    # the run without a value of t_first_pl_min is shown, at its mass
+    circle, = marker_lines(ax_t, "completed, no value (NaN)")
+    assert np.allclose(circle.get_xdata(), [1.0])
+    assert not marker_lines(ax_m, "completed, no value (NaN)")
+    # one joined line per alpha: the runs of a line differ only in the mass
+    data = [line for line in ax_m.get_lines() if line.get_label().startswith("disk.alpha")]
+    assert [line.get_linestyle() for line in data] == ["-", "-"]
+    assert np.allclose(data[0].get_ydata(), [1.0, 3.0, 5.0]), data[0].get_ydata()
+    assert np.allclose(data[1].get_ydata(), [0.0, 6.0]), data[1].get_ydata()
+    fig = plot_scan.map_figure(summary, "star.mass_msun", "disk.alpha", "t_first_pl_min",
+                               os.path.join(tmp, "scan_map.png"))
+    ax = fig.axes[0]
+    mesh = [c for c in ax.collections if hasattr(c, "get_array") and c.get_array() is not None][0]
+    Z = np.ma.filled(mesh.get_array(), np.nan).reshape(2, 3)   # rows alpha, columns mass
+    assert np.allclose(Z, [[700.0, 300.0, 100.0], [np.nan, np.nan, 50.0]], equal_nan=True), Z
+    circle, = marker_lines(ax, "completed, no value (NaN)")
+    cross, = marker_lines(ax, "not completed")
+    assert np.allclose(circle.get_xydata(), [[1.0, 1e-2]]) and np.allclose(
+        cross.get_xydata(), [[0.5, 1e-2]])
+
+    # Latin hypercube over three axes: points not joined, the NaN run marked on the map
+    rng = np.random.default_rng(1)
+    n = 8
+    lhs = {"star.mass_msun": (rng.uniform(0.3, 2.0, n), "lin"),
+           "disk.alpha": (10 ** rng.uniform(-4, -2, n), "log"),
+           "disk.T_1au": (rng.uniform(150, 300, n), "lin")}
+    m_peb = rng.uniform(0.1, 1.0, n)
+    m_peb[3] = np.nan
+    lhs_dir = os.path.join(tmp, "scan_lhs")
+    write_scan_summary(lhs_dir, lhs, ["completed"] * n, {"m_peb_snowline": (m_peb, "M_earth")},
+                       "lhs")
+    summary = plot_scan.load_summary(lhs_dir)
+    fig = plot_scan.line_figure(summary, "star.mass_msun", ["m_peb_snowline"],
+                                os.path.join(tmp, "lhs_lines.png"))
+    points = [line for line in fig.axes[0].get_lines() if line.get_marker() == "o"
+              and not line.get_label().startswith("completed")]
+    assert points and all(line.get_linestyle() == "None" for line in points)
+    assert "not joined" in fig._suptitle.get_text()
+    fig = plot_scan.map_figure(summary, "star.mass_msun", "disk.alpha", "m_peb_snowline",
+                               os.path.join(tmp, "lhs_map.png"))
+    circle, = marker_lines(fig.axes[0], "completed, no value (NaN)")
+    assert np.allclose(circle.get_xydata(), [[lhs["star.mass_msun"][0][3], lhs["disk.alpha"][0][3]]])
+    status, written = None, []
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        status = plot_scan.main([grid_dir])
+    written = out.getvalue().split()
+    assert status == 0 and all(_is_png(p) for p in written) and len(written) == 2, written
+    return ("plot_scan: failed runs along the panel bottom, NaN outcomes marked (lines, grid "
+            "map, LHS scatter), map cells in place, LHS points not joined")
+
+
 def check_i0e_vs_numpy(tmp):
     x = np.concatenate([np.linspace(0.0, 60.0, 60001), np.geomspace(1e-10, 700.0, 20001)])
     ref = np.i0(x) * np.exp(-x)
@@ -669,7 +762,7 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
           check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
           check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full, check_plot_run_formed_threshold,
-          check_snow_line_off, check_t_first_off_axis_label,
+          check_snow_line_off, check_t_first_off_axis_label, check_plot_scan,
           check_plot_run_transport_only, check_plot_run_degraded,
           check_plot_run_failure_status, check_plot_run_single_snapshot]
 
