@@ -350,12 +350,20 @@ def dust_to_gas_reference(run):
 
 def draw_diverging(fig, ax, run, t, values, limits, colour_map, quantity):
     """pcolormesh of log10(values) with a two-slope norm centred on the initial
-    dust-to-gas ratio: one to DEPLETION_DECADES decades below it (deeper depletion
-    saturates), a decade or more above; colour bar labelled in powers of 10."""
+    dust-to-gas ratio (dust_to_gas_reference; the middle of the range when it has none):
+    one to DEPLETION_DECADES decades below it (deeper depletion saturates), a decade or
+    more above; colour bar labelled in powers of 10."""
     lo, hi, _ = limits
     centre = dust_to_gas_reference(run)
-    if not np.isfinite(centre) or not lo < centre < hi:
+    initial = bool(np.isfinite(centre) and centre > 0)
+    if initial:
+        # white stays the initial ratio even when the largest ratios (gas drained at an
+        # edge) lie many decades above it: the lower end from the data, not from `hi`
+        positive = values[np.isfinite(values) & (values > 0)]
+        lo = float(np.percentile(positive, 0.5))
+    else:
         centre = np.sqrt(lo * hi)
+    word = "initial" if initial else "middle"
     lo = min(max(lo, centre * 10.0 ** -DEPLETION_DECADES), centre / 10.0)
     hi = max(hi, centre * 10.0)
     log_values = np.log10(values)
@@ -370,9 +378,9 @@ def draw_diverging(fig, ax, run, t, values, limits, colour_map, quantity):
     decades = np.arange(np.ceil(np.log10(lo)), np.floor(np.log10(hi)) + 1)
     ticks = np.union1d(decades, [np.log10(centre)])
     bar.set_ticks(ticks)
-    bar.set_ticklabels([f"{10 ** x:.3g}\n(initial)" if x == np.log10(centre) and
+    bar.set_ticklabels([f"{10 ** x:.3g}\n({word})" if x == np.log10(centre) and
                         x not in decades else f"$10^{{{x:.0f}}}$" for x in ticks])
-    bar.set_label(f"{quantity}   (white: initial {centre:.3g})")
+    bar.set_label(f"{quantity}   (white: {word} {centre:.3g})")
 
 
 def overlay_planetesimals(ax, run, keep, t, hatch_color=ZONE_HATCH_COLOR):

@@ -642,6 +642,30 @@ def check_plot_scan(tmp):
             "map, LHS scatter), map cells in place, LHS points not joined")
 
 
+def check_dust_to_gas_map_centre(tmp):
+    # gas drained at the outer edge after t = 0 (an evolving LBP disk): ratios up to
+    # ~1e10 there; the map's white must stay the initial ratio (0.01 here), not move to
+    # the middle of the range and be called "initial"
+    path = os.path.join(tmp, "drained_edge.h5")
+    ref = write_run(path)
+    with h5py.File(path, "a") as f:
+        sigma_g = f["snapshots/sigma_g"][()]
+        edge = ref["r_c"] > 0.3 * ref["r_c"][-1]
+        sigma_g[1:, edge] *= 1e-12
+        f["snapshots/sigma_g"][...] = sigma_g
+    run = reader.load_run(path)
+    initial = plot_run.dust_to_gas_reference(run)
+    assert np.isclose(initial, 0.01, rtol=1e-6), initial
+    with captured_figures() as figures:
+        plot_run.plot_map(run, os.path.join(tmp, "drained_dtg.png"),
+                          **dict(plot_run.MAPS)["rt_dust_to_gas.png"])
+    mesh = figures[0].axes[0].collections[0]
+    assert np.isclose(10 ** mesh.norm.vcenter, initial, rtol=1e-9), 10 ** mesh.norm.vcenter
+    bar_label = figures[0].axes[1].get_ylabel()
+    assert f"initial {initial:.3g}" in bar_label, bar_label
+    return f"dust-to-gas map with a drained gas edge: white = the initial ratio ({bar_label})"
+
+
 def check_i0e_vs_numpy(tmp):
     x = np.concatenate([np.linspace(0.0, 60.0, 60001), np.geomspace(1e-10, 700.0, 20001)])
     ref = np.i0(x) * np.exp(-x)
@@ -763,6 +787,7 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
           check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full, check_plot_run_formed_threshold,
           check_snow_line_off, check_t_first_off_axis_label, check_plot_scan,
+          check_dust_to_gas_map_centre,
           check_plot_run_transport_only, check_plot_run_degraded,
           check_plot_run_failure_status, check_plot_run_single_snapshot]
 
