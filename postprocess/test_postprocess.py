@@ -666,6 +666,24 @@ def check_dust_to_gas_map_centre(tmp):
     return f"dust-to-gas map with a drained gas edge: white = the initial ratio ({bar_label})"
 
 
+def check_plot_unfinished_title(tmp):
+    # a killed run's profile figures must not call its last snapshot t_end
+    titles = {}
+    for label, options in (("killed", {"killed": True}), ("complete", {})):
+        path = os.path.join(tmp, f"title_{label}.h5")
+        write_run(path, **options)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            run = reader.load_run(path)
+        indices = plot.select_snapshots(run.time)
+        for make in (plot.plot_sigma_d, plot.plot_dust_to_gas):
+            fig = make(run, indices, os.path.join(tmp, f"title_{label}.png"))
+            titles.setdefault(label, []).append(fig.axes[0].get_title())
+    assert all("unfinished, last snapshot" in t and "end" not in t for t in titles["killed"]), titles
+    assert all("t_\\mathrm{end}" in t and "unfinished" not in t for t in titles["complete"]), titles
+    return f"plot: an unfinished run's profile figures say so ({titles['killed'][0]!r})"
+
+
 def check_i0e_vs_numpy(tmp):
     x = np.concatenate([np.linspace(0.0, 60.0, 60001), np.geomspace(1e-10, 700.0, 20001)])
     ref = np.i0(x) * np.exp(-x)
@@ -787,7 +805,7 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
           check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full, check_plot_run_formed_threshold,
           check_snow_line_off, check_t_first_off_axis_label, check_plot_scan,
-          check_dust_to_gas_map_centre,
+          check_dust_to_gas_map_centre, check_plot_unfinished_title,
           check_plot_run_transport_only, check_plot_run_degraded,
           check_plot_run_failure_status, check_plot_run_single_snapshot]
 
