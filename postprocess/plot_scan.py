@@ -10,7 +10,7 @@ reads DIR/summary.h5 (written by `panoptic scan ... -o DIR`) and writes into OUT
   - two axes: map_<outcome>.png per outcome: a colour map over the two axes when the runs
     form a full grid (sampling = "grid"), else a scatter coloured by the outcome
     (Latin-hypercube scans).
-Axes of log spacing (and lists of positive numbers that span more than two decades) get
+Axes of log spacing (and lists of positive numbers that span two decades or more) get
 log scales; positive outcomes that span more than two decades get
 a logarithmic colour scale (values more than 1e6 below the largest get its lowest colour).
 Runs that did not complete are drawn as black crosses (along the bottom of a line panel:
@@ -51,8 +51,9 @@ def load_summary(scan_dir):
             ds = f["axes"][k]
             sp = _str(ds.attrs.get("spacing", "list"))
             v = ds[()] if ds.dtype.kind == "f" else dec(ds[()])
-            if sp == "list" and v.dtype.kind == "f" and np.all(v > 0) and v.max() > 100 * v.min():
-                sp = "log"  # a list of positive numbers over more than two decades
+            if sp == "list" and v.dtype.kind == "f" and np.all(v > 0) and (
+                    v.max() >= 100 * v.min() * (1 - 1e-9)):
+                sp = "log"  # a list of positive numbers over two decades or more
             axes[k] = (v, sp)
         return {"status": dec(f["runs/status"][()]), "name": dec(f["runs/name"][()]),
                 "axes": axes, "sampling": _str(f.attrs["sampling"]),

@@ -633,7 +633,13 @@ def check_plot_scan(tmp):
                                os.path.join(tmp, "lhs_map.png"))
     circle, = marker_lines(fig.axes[0], "completed, no value (NaN)")
     assert np.allclose(circle.get_xydata(), [[lhs["star.mass_msun"][0][3], lhs["disk.alpha"][0][3]]])
-    status, written = None, []
+    # a list axis 1e-4, 1e-3, 1e-2 (two decades, 100 x 1e-4 rounds above 1e-2): log
+    list_dir = os.path.join(tmp, "scan_list")
+    write_scan_summary(list_dir, {"disk.alpha": ([1e-4, 1e-3, 1e-2], "list"),
+                                  "star.mass_msun": ([0.5, 1.0, 1.5], "list")},
+                       ["completed"] * 3, {"m_pl_coag": ([1.0, 2.0, 3.0], "M_earth")}, "grid")
+    axes = plot_scan.load_summary(list_dir)["axes"]
+    assert axes["disk.alpha"][1] == "log" and axes["star.mass_msun"][1] == "list", axes
     with contextlib.redirect_stdout(io.StringIO()) as out:
         status = plot_scan.main([grid_dir])
     written = out.getvalue().split()
