@@ -167,8 +167,9 @@ def line_figure(s, key, outcomes, path):
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
     if not all(joined):
-        fig.suptitle(f"points not joined: the other axes ({', '.join(k for k in s['axes'] if k != key)}) "
-                     "vary between them", fontsize=9)
+        other = ", ".join(k for k in s["axes"] if k != key)
+        fig.suptitle(f"points not joined: the other axes ({other}) vary between them",
+                     fontsize=9)
     fig.savefig(path, dpi=110)
     return fig
 

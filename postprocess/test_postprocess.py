@@ -524,7 +524,8 @@ def check_snow_line_off(tmp):
     with h5py.File(path, "a") as f:      # the same file with the snow line on: drawn
         f.attrs["config_toml"] = CONFIG_TOML + "\n[snowline]\nenabled = true\n"
     assert reader.load_run(path).r_snow_au == SNOW_AU
-    return "snowline.enabled = false: no snow line drawn or named (r_snow_au NaN), T_sub monitor labelled"
+    return ("snowline.enabled = false: no snow line drawn or named (r_snow_au NaN), "
+            "T_sub monitor labelled")
 
 
 def check_t_first_off_axis_label(tmp):
@@ -545,7 +546,8 @@ def check_t_first_off_axis_label(tmp):
     assert np.isclose(bottom, 10 ** 5.5), bottom
     label = [t.get_text() for t in ax.get_legend().get_texts() if "first" in t.get_text()][0]
     n_early = int(np.sum(t_first < bottom))
-    assert n_early > 0 and f"{n_early} cells before {plot.format_years(bottom)}, off" in label, label
+    expected = f"{n_early} cells before {plot.format_years(bottom)}, off"
+    assert n_early > 0 and expected in label, label
     return f"r-t map: t_first_pl cells below the time axis counted against its bottom ({label})"
 
 
@@ -632,7 +634,8 @@ def check_plot_scan(tmp):
     fig = plot_scan.map_figure(summary, "star.mass_msun", "disk.alpha", "m_peb_snowline",
                                os.path.join(tmp, "lhs_map.png"))
     circle, = marker_lines(fig.axes[0], "completed, no value (NaN)")
-    assert np.allclose(circle.get_xydata(), [[lhs["star.mass_msun"][0][3], lhs["disk.alpha"][0][3]]])
+    assert np.allclose(circle.get_xydata(),
+                       [[lhs["star.mass_msun"][0][3], lhs["disk.alpha"][0][3]]])
     # a list axis 1e-4, 1e-3, 1e-2 (two decades, 100 x 1e-4 rounds above 1e-2): log
     list_dir = os.path.join(tmp, "scan_list")
     write_scan_summary(list_dir, {"disk.alpha": ([1e-4, 1e-3, 1e-2], "list"),
@@ -685,7 +688,8 @@ def check_plot_unfinished_title(tmp):
         for make in (plot.plot_sigma_d, plot.plot_dust_to_gas):
             fig = make(run, indices, os.path.join(tmp, f"title_{label}.png"))
             titles.setdefault(label, []).append(fig.axes[0].get_title())
-    assert all("unfinished, last snapshot" in t and "end" not in t for t in titles["killed"]), titles
+    assert all("unfinished, last snapshot" in t and "end" not in t
+               for t in titles["killed"]), titles
     assert all("t_\\mathrm{end}" in t and "unfinished" not in t for t in titles["complete"]), titles
     return f"plot: an unfinished run's profile figures say so ({titles['killed'][0]!r})"
 
@@ -809,7 +813,8 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
           check_reader_timeseries_zero_rows, check_reader_monitor_names,
           check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
-          check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full, check_plot_run_formed_threshold,
+          check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full,
+          check_plot_run_formed_threshold,
           check_snow_line_off, check_t_first_off_axis_label, check_plot_scan,
           check_dust_to_gas_map_centre, check_plot_unfinished_title,
           check_plot_run_transport_only, check_plot_run_degraded,
