@@ -144,7 +144,8 @@ def add_time_colorbar(fig, ax, norm, times):
 
 
 def finish(fig, ax, run, indices, norm, ylabel, out_path):
-    """Labels, time colour bar, legend, title and provenance; save to out_path."""
+    """Labels, time colour bar, legend, title and provenance; save to out_path. The title
+    gives t_end, or for an unfinished run (killed, stopped or failed) its last snapshot."""
     ax.set_xlim(run.r_f[0], run.r_f[-1])
     ax.set_xlabel(r"$r$ [au]")
     ax.set_ylabel(ylabel)
@@ -152,11 +153,14 @@ def finish(fig, ax, run, indices, norm, ylabel, out_path):
         add_time_colorbar(fig, ax, norm, run.time[indices])
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="best", fontsize=8, frameon=False)
-    ax.set_title(f"{run.scene or 'run'}: $t_\\mathrm{{end}}$ = {format_years(run.time[-1])}",
+    last = format_years(run.time[-1])
+    ax.set_title(f"{run.scene or 'run'}: " + (f"$t_\\mathrm{{end}}$ = {last}" if run.finished
+                                              else f"unfinished, last snapshot {last}"),
                  fontsize=11)
     fig.text(0.995, 0.005, _provenance(run), ha="right", va="bottom", fontsize=6,
              color="0.5")
     fig.savefig(out_path)
+    return fig
 
 
 def _provenance(run):
@@ -172,7 +176,7 @@ def plot_sigma_d(run, indices, out_path):
     norm = plot_profiles(ax, run, run.snapshots["sigma_d"], indices)
     mark_snow_line(ax, run)
     set_log_ylim(ax, [run.snapshots[name][indices] for name in ("sigma_d", "sigma_g")])
-    finish(fig, ax, run, indices, norm, r"$\Sigma_\mathrm{d}$ [g cm$^{-2}$]", out_path)
+    return finish(fig, ax, run, indices, norm, r"$\Sigma_\mathrm{d}$ [g cm$^{-2}$]", out_path)
 
 
 def plot_dust_to_gas(run, indices, out_path):
@@ -183,7 +187,8 @@ def plot_dust_to_gas(run, indices, out_path):
     norm = plot_profiles(ax, run, ratio, indices)
     mark_snow_line(ax, run)
     set_log_ylim(ax, [ratio[indices]])
-    finish(fig, ax, run, indices, norm, r"$\Sigma_\mathrm{d}\,/\,\Sigma_\mathrm{g}$", out_path)
+    return finish(fig, ax, run, indices, norm, r"$\Sigma_\mathrm{d}\,/\,\Sigma_\mathrm{g}$",
+                  out_path)
 
 
 def default_outdir(run_path):

@@ -38,7 +38,8 @@ from postprocess.reader import load_run
 
 M_EARTH = 5.972e27            # [g], src/units.hpp kMearth
 MYR = 1e6 * 3.156e7           # [s], src/units.hpp kMyr
-FORMED_FRACTION = 1e-6        # Sigma_pl > this x initial Sigma_d: planetesimals formed
+FORMED_FRACTION = 1e-6        # Sigma_pl > this x the largest initial Sigma_d: formed
+                              # (src/diagnostics.cpp; /summary/formed_threshold)
 NO_DUST_FRACTION = 1e-6       # Sigma_d < this x initial Sigma_d: cell counted as dust-free
 ZONE_MARGIN = 4.0             # Sigma_pl figure: r range = planetesimal zone widened x4
 DEPLETION_DECADES = 4         # dust-to-gas map: colours resolve this far below the initial
@@ -53,8 +54,9 @@ ZONE_EDGE_STYLE = {"colors": "w", "linewidths": 1.0,     # outlined along the ce
                    "path_effects": [patheffects.withStroke(linewidth=2.4, foreground="k")]}
 NO_DUST_LABEL = (rf"no dust ($\Sigma_\mathrm{{d}} < 10^{{{np.log10(NO_DUST_FRACTION):.0f}}}"
                  r"\,\Sigma_\mathrm{d,0}$)")
-ZONE_LABEL = (rf"planetesimals ($\Sigma_\mathrm{{pl}} > 10^{{{np.log10(FORMED_FRACTION):.0f}}}"
-              r"\,\Sigma_\mathrm{d,0}$)")
+FORMED_TEX = (rf"10^{{{np.log10(FORMED_FRACTION):.0f}}}\,"
+              r"\max\,\Sigma_\mathrm{d,0}")
+ZONE_LABEL = rf"planetesimals ($\Sigma_\mathrm{{pl}} > {FORMED_TEX}$)"
 NO_DUST_COLOR = "0.82"
 CHANNELS = (("coag", "direct coagulation", "tab:green"),
             ("si", "streaming instability", "tab:purple"))
@@ -143,6 +145,17 @@ def plural(n, word):
 def initial_dust(run):
     """Initial Sigma_d (N,) [g cm^-2]: the first snapshot."""
     return run.snapshots["sigma_d"][0]
+
+
+def formed_threshold(run):
+    """Sigma_pl [g cm^-2] above which a cell counts as having formed planetesimals: the
+    run's /summary/formed_threshold (FORMED_FRACTION of the largest initial Sigma_d, the
+    threshold of /summary's r_min_pl_*, r_max_pl_* and t_first_pl), else (a file without
+    it: killed or older) the same computed from the first snapshot."""
+    value = run.summary.get("formed_threshold")
+    if value is not None and np.isfinite(value) and value > 0:
+        return float(value)
+    return FORMED_FRACTION * float(np.max(initial_dust(run)))
 
 
 def sigma_pl_total(run):
@@ -250,7 +263,7 @@ def plot_map(run, out_path, field, quantity, cmap, decades, vmax=None, mask_no_d
     diverging: centred on the initial dust-to-gas ratio (dust_to_gas_reference), at least
     a decade each side. Cells with Sigma_d < NO_DUST_FRACTION x initial Sigma_d are grey
     when mask_no_dust. Overlays: snow line, planetesimal-forming zone (Sigma_pl >
-    FORMED_FRACTION x initial Sigma_d, hatched in hatch_color and outlined) and
+    formed_threshold, hatched in hatch_color and outlined) and
     t_first_pl(r).
     """
     snaps = run.snapshots
@@ -337,12 +350,20 @@ def dust_to_gas_reference(run):
 
 def draw_diverging(fig, ax, run, t, values, limits, colour_map, quantity):
     """pcolormesh of log10(values) with a two-slope norm centred on the initial
-    dust-to-gas ratio: one to DEPLETION_DECADES decades below it (deeper depletion
-    saturates), a decade or more above; colour bar labelled in powers of 10."""
+    dust-to-gas ratio (dust_to_gas_reference; the middle of the range when it has none):
+    one to DEPLETION_DECADES decades below it (deeper depletion saturates), a decade or
+    more above; colour bar labelled in powers of 10."""
     lo, hi, _ = limits
     centre = dust_to_gas_reference(run)
-    if not np.isfinite(centre) or not lo < centre < hi:
+    initial = bool(np.isfinite(centre) and centre > 0)
+    if initial:
+        # white stays the initial ratio even when the largest ratios (gas drained at an
+        # edge) lie many decades above it: the lower end from the data, not from `hi`
+        positive = values[np.isfinite(values) & (values > 0)]
+        lo = float(np.percentile(positive, 0.5))
+    else:
         centre = np.sqrt(lo * hi)
+    word = "initial" if initial else "middle"
     lo = min(max(lo, centre * 10.0 ** -DEPLETION_DECADES), centre / 10.0)
     hi = max(hi, centre * 10.0)
     log_values = np.log10(values)
@@ -357,18 +378,18 @@ def draw_diverging(fig, ax, run, t, values, limits, colour_map, quantity):
     decades = np.arange(np.ceil(np.log10(lo)), np.floor(np.log10(hi)) + 1)
     ticks = np.union1d(decades, [np.log10(centre)])
     bar.set_ticks(ticks)
-    bar.set_ticklabels([f"{10 ** x:.3g}\n(initial)" if x == np.log10(centre) and
+    bar.set_ticklabels([f"{10 ** x:.3g}\n({word})" if x == np.log10(centre) and
                         x not in decades else f"$10^{{{x:.0f}}}$" for x in ticks])
-    bar.set_label(f"{quantity}   (white: initial {centre:.3g})")
+    bar.set_label(f"{quantity}   (white: {word} {centre:.3g})")
 
 
 def overlay_planetesimals(ax, run, keep, t, hatch_color=ZONE_HATCH_COLOR):
-    """Hatch the snapshot cells keep (times t [yr]) where Sigma_pl > FORMED_FRACTION x
-    initial Sigma_d, draw t_first_pl(r) [yr]; returns the legend handles."""
+    """Hatch the snapshot cells keep (times t [yr]) where Sigma_pl > formed_threshold,
+    draw t_first_pl(r) [yr]; returns the legend handles."""
     handles = []
     sigma_pl = sigma_pl_total(run)
     if sigma_pl is not None:
-        formed = sigma_pl[keep] > FORMED_FRACTION * initial_dust(run)[None, :]
+        formed = sigma_pl[keep] > formed_threshold(run)
         if formed.any():
             x_edges, y_edges = run.r_f, time_edges(t)
             ax.add_collection(PolyCollection(mask_rectangles(formed, x_edges, y_edges),
@@ -380,10 +401,11 @@ def overlay_planetesimals(ax, run, keep, t, hatch_color=ZONE_HATCH_COLOR):
                                  label=ZONE_LABEL))
     t_first = t_first_pl(run)
     if t_first is not None and np.isfinite(t_first).any():
-        early = np.isfinite(t_first) & (t_first < time_edges(t)[0])
+        bottom = time_edges(t)[0]    # the axis starts below the first snapshot t[0]
+        early = np.isfinite(t_first) & (t_first < bottom)
         label = r"$t_\mathrm{first\,pl}(r)$"
         if early.any():
-            label += (f" ({plural(early.sum(), 'cell')} before {plot.format_years(t[0])},"
+            label += (f" ({plural(early.sum(), 'cell')} before {plot.format_years(bottom)},"
                       " off the axis)")
         line, = ax.plot(run.r_c, t_first, label=label, **T_FIRST_STYLE)
         handles.append(line)
@@ -404,10 +426,14 @@ def pebble_series(run):
     raise Skip("no pebble-flux data (/timeseries or /snapshots/pebble_flux)")
 
 
-def monitor_label(name, r_au):
-    """'snow line (2.73 au)'; a name that already is the radius ('10 au') alone."""
+def monitor_label(name, r_au, snow_line=True):
+    """'snow line (2.73 au)'; a name that already is the radius ('10 au') alone. With
+    snow_line False (snowline.enabled = false) the monitor panoptic names "snow line" is
+    only where T = T_sub, and labelled so."""
     plain = f"{r_au:.3g} au"
     pretty = {"r_in": r"$r_\mathrm{in}$", "r_out": r"$r_\mathrm{out}$"}.get(name, name)
+    if name == "snow line" and not snow_line:
+        pretty = r"$T = T_\mathrm{sub}$, snow line off"
     return name if name == plain else f"{pretty} ({plain})"
 
 
@@ -429,10 +455,12 @@ def plot_pebble_flux(run, out_path):
         final = mass[-1, k] if len(mass) else np.nan
         # inner monitors drawn wider, so that coinciding curves stay visible
         width = 1.2 + 1.0 * (len(order) - 1 - n) / max(len(order) - 1, 1)
+        snow_line = bool(np.isfinite(run.r_snow_au))
         style = {"color": MONITOR_COLORS[n % len(MONITOR_COLORS)], "lw": width,
-                 "ls": "--" if names[k] == "snow line" else "-"}
+                 "ls": "--" if names[k] == "snow line" and snow_line else "-"}
         ax_f.plot(time[positive], plot.masked_log(flux[positive, k]),
-                  label=f"{monitor_label(names[k], r_au[k])}: {final:.3g} " + r"$M_\oplus$",
+                  label=f"{monitor_label(names[k], r_au[k], snow_line)}: {final:.3g} "
+                        + r"$M_\oplus$",
                   **style)
         ax_m.plot(time[positive], plot.masked_log(mass[positive, k]), **style)
         outward |= bool(np.any(flux[positive, k] < 0))
@@ -445,8 +473,9 @@ def plot_pebble_flux(run, out_path):
     if np.any(positive):
         ax_m.set_xlim(time[positive].min(), time[positive].max())
         label_minor_log_ticks(ax_m.xaxis, time[positive].min(), time[positive].max())
+    columns = 3 if np.isfinite(run.r_snow_au) else 2     # room for the T_sub label
     ax_f.legend(loc="lower left", bbox_to_anchor=(0.0, 1.01, 1.0, 0.1), mode="expand",
-                ncol=min(3, len(order)), fontsize=7.5, frameon=False, borderaxespad=0.0,
+                ncol=min(columns, len(order)), fontsize=7.5, frameon=False, borderaxespad=0.0,
                 title=f"monitor: total mass through by {plot.format_years(time[-1])}",
                 title_fontsize=7.5)
     if outward:
@@ -479,7 +508,7 @@ def set_decades_ylim(ax, values, decades):
 
 def plot_sigma_pl(run, out_path):
     """Sigma_pl(r) [g cm^-2] by channel and in total at the last snapshot, with Sigma_g
-    and the initial Sigma_d for scale and the formation threshold."""
+    and the initial Sigma_d for scale and the formation threshold (formed_threshold)."""
     snaps = run.snapshots
     total = sigma_pl_total(run)
     if total is None:
@@ -495,9 +524,9 @@ def plot_sigma_pl(run, out_path):
             label=rf"$\Sigma_\mathrm{{d}}$ at {plot.format_years(run.time[0])}")
     ax.plot(run.r_c, plot.masked_log(snaps["sigma_d"][last]), color="tab:brown", lw=1.0,
             alpha=0.6, label=rf"$\Sigma_\mathrm{{d}}$ at {plot.format_years(run.time[last])}")
-    threshold = FORMED_FRACTION * sigma_d0
-    ax.plot(run.r_c, plot.masked_log(threshold), color="0.6", lw=0.8, ls="-.",
-            label=rf"threshold $10^{{{np.log10(FORMED_FRACTION):.0f}}}\,\Sigma_\mathrm{{d,0}}$")
+    threshold = np.full(run.r_c.shape, formed_threshold(run))
+    ax.plot(run.r_c, threshold, color="0.6", lw=0.8, ls="-.",
+            label=rf"threshold ${FORMED_TEX}$")
     shown = [snaps["sigma_g"][last], sigma_d0, threshold]
     formed_any = False
     for channel, what, colour in CHANNELS:
@@ -529,7 +558,7 @@ def plot_sigma_pl(run, out_path):
     ax.set_ylim(bottom / 3.0, top * 3.0)
     if not formed_any:
         note(ax, f"no planetesimals formed by {plot.format_years(run.time[last])}\n"
-                 r"($\Sigma_\mathrm{pl} \leq 10^{-6}\,\Sigma_\mathrm{d,0}$ everywhere)", y=0.2)
+                 rf"($\Sigma_\mathrm{{pl}} \leq {FORMED_TEX}$ everywhere)", y=0.2)
     if (x_lo, x_hi) != (run.r_f[0], run.r_f[-1]):
         ax.plot([], [], ls="none", label=f"($r$ zoomed to the planetesimals;\n grid "
                 f"{run.r_f[0]:.3g}$-${run.r_f[-1]:.4g} au)")

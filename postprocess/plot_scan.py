@@ -5,14 +5,17 @@
 reads DIR/summary.h5 (written by `panoptic scan ... -o DIR`) and writes into OUTDIR
 (default DIR/plots/), printing the path of each figure:
   - one axis (or --axes KEY): lines_<KEY>.png, one panel per outcome against the axis;
-    with a second axis of at most 8 values, one line per value of it;
+    with a second axis of at most 8 values, one line per value of it; points are joined
+    only where every other axis is fixed (else, e.g. Latin hypercube, drawn alone);
   - two axes: map_<outcome>.png per outcome: a colour map over the two axes when the runs
     form a full grid (sampling = "grid"), else a scatter coloured by the outcome
     (Latin-hypercube scans).
-Axes of log spacing (and lists of positive numbers that span more than two decades) get
+Axes of log spacing (and lists of positive numbers that span two decades or more) get
 log scales; positive outcomes that span more than two decades get
 a logarithmic colour scale (values more than 1e6 below the largest get its lowest colour).
-Runs that did not complete are drawn as black crosses. Outcomes (default: those present
+Runs that did not complete are drawn as black crosses (along the bottom of a line panel:
+they have no value), completed runs without a value of the outcome (NaN, e.g.
+t_first_pl_min where no planetesimal formed) as open grey circles. Outcomes (default: those present
 of m_pl_coag, m_pl_si, m_peb_snowline, m_peb_r_in, m_dust_final, t_first_pl_min) are the
 /summary scalars of the runs (README, Output; units M_earth, au, yr).
 """
@@ -48,8 +51,9 @@ def load_summary(scan_dir):
             ds = f["axes"][k]
             sp = _str(ds.attrs.get("spacing", "list"))
             v = ds[()] if ds.dtype.kind == "f" else dec(ds[()])
-            if sp == "list" and v.dtype.kind == "f" and np.all(v > 0) and v.max() > 100 * v.min():
-                sp = "log"  # a list of positive numbers over more than two decades
+            if sp == "list" and v.dtype.kind == "f" and np.all(v > 0) and (
+                    v.max() >= 100 * v.min() * (1 - 1e-9)):
+                sp = "log"  # a list of positive numbers over two decades or more
             axes[k] = (v, sp)
         return {"status": dec(f["runs/status"][()]), "name": dec(f["runs/name"][()]),
                 "axes": axes, "sampling": _str(f.attrs["sampling"]),
@@ -103,14 +107,40 @@ def label(name, s):
     return f"{name} [{units}]" if units else name
 
 
+def fixed_elsewhere(s, key, sel):
+    """True when the runs sel (bool mask) differ only in axis `key` (every other axis
+    has one value among them): then their outcomes form a curve against `key`."""
+    return all(len(np.unique(v[sel])) <= 1 for k, (v, _) in s["axes"].items() if k != key)
+
+
+def mark_missing(ax, x, y, bad, nan, label_runs):
+    """Runs that did not complete (bad, black crosses) and completed runs without a value
+    of the outcome (nan, NaN: e.g. t_first_pl_min where none formed; open grey circles).
+    y None: along the bottom of a line panel (axes coordinates: no value is implied), else
+    at the runs' (x, y) of a map."""
+    transform = ax.get_xaxis_transform() if y is None else ax.transData
+    for mask, style, label in ((bad, {"marker": "x", "color": "k", "ms": 7},
+                                "not completed"),
+                               (nan, {"marker": "o", "mfc": "none", "mec": "0.45", "ms": 6},
+                                "completed, no value (NaN)")):
+        if mask.any():
+            ys = np.full(mask.sum(), 0.03) if y is None else y[mask]
+            ax.plot(x[mask], ys, ls="none", transform=transform, clip_on=False,
+                    label=label if label_runs else None, **style)
+
+
 def line_figure(s, key, outcomes, path):
+    """One panel per outcome against axis `key`; returns the figure (also saved to path).
+    Points are joined only where the other axes are fixed (one line per value of a second
+    axis of at most 8 values); else (more axes, Latin hypercube) they are drawn alone."""
     x, spacing = s["axes"][key]
     others = [k for k in s["axes"] if k != key and s["axes"][k][0].dtype.kind == "f"]
     groups = [(None, np.ones(len(x), bool))]
     if others:
         vals = np.unique(s["axes"][others[0]][0])
-        if len(vals) <= 8:
+        if len(vals) <= 8 and len(vals) < len(x):    # values shared by runs (not LHS)
             groups = [(f"{others[0]} = {v:.4g}", s["axes"][others[0]][0] == v) for v in vals]
+    joined = [fixed_elsewhere(s, key, sel) for _, sel in groups]
     ok = s["status"] == "completed"
     n = len(outcomes)
     cols = min(n, 3)
@@ -120,15 +150,12 @@ def line_figure(s, key, outcomes, path):
     for k, o in enumerate(outcomes):
         ax = fig.add_subplot(rows, cols, k + 1)
         z = s["outcome"][o]
-        for lab, sel in groups:
+        for (lab, sel), line in zip(groups, joined):
             m = sel & ok & np.isfinite(z)
             order = np.argsort(x[m])
-            ax.plot(x[m][order], z[m][order], "o-", ms=3, label=lab)
-        bad = ~ok
-        if bad.any():
-            floor = norm_for(z).vmin if norm_for(z) is not None else np.nanmin(z)
-            ax.plot(x[bad], np.full(bad.sum(), floor if np.isfinite(floor) else 0),
-                    "kx", label="not completed")
+            ax.plot(x[m][order], z[m][order], "o-" if line else "o", ms=3, label=lab)
+        bad, nan = ~ok, ok & ~np.isfinite(z)
+        mark_missing(ax, x, None, bad, nan, label_runs=True)
         if spacing == "log":
             ax.set_xscale("log")
         norm = norm_for(z)
@@ -137,12 +164,19 @@ def line_figure(s, key, outcomes, path):
             ax.set_ylim(norm.vmin / 2, norm.vmax * 2)
         ax.set_xlabel(key)
         ax.set_ylabel(label(o, s))
-        if k == 0 and (groups[0][0] is not None or bad.any()):
+        if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
+    if not all(joined):
+        other = ", ".join(k for k in s["axes"] if k != key)
+        fig.suptitle(f"points not joined: the other axes ({other}) vary between them",
+                     fontsize=9)
     fig.savefig(path, dpi=110)
+    return fig
 
 
 def map_figure(s, kx, ky, o, path):
+    """Colour map (full grid) or scatter of outcome o over axes kx, ky; returns the figure
+    (also saved to path)."""
     x, sx = s["axes"][kx]
     y, sy = s["axes"][ky]
     z = np.where(s["status"] == "completed", s["outcome"][o], np.nan)
@@ -159,8 +193,8 @@ def map_figure(s, kx, ky, o, path):
         m = np.isfinite(z)
         im = ax.scatter(x[m], y[m], c=z[m], norm=norm, s=28, edgecolors="none")
     bad = s["status"] != "completed"
-    if bad.any():
-        ax.plot(x[bad], y[bad], "kx", ms=7, label="not completed")
+    mark_missing(ax, x, y, bad, ~bad & ~np.isfinite(z), label_runs=True)
+    if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=7, loc="upper right")
     if sx == "log":
         ax.set_xscale("log")
@@ -171,6 +205,7 @@ def map_figure(s, kx, ky, o, path):
     ax.set_title(o, fontsize=10)
     fig.colorbar(im, ax=ax, label=label(o, s))
     fig.savefig(path, dpi=110)
+    return fig
 
 
 def main(argv=None):

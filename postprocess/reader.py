@@ -45,7 +45,9 @@ class Run:
         snapshots   dict name -> array with first dimension nt (every /snapshots dataset,
                     including "time")
         disk        dict name -> array (N,), static gas-disk fields
-        r_snow_au   snow-line radius [au], NaN if the disk has none
+        r_snow_au   snow-line radius [au], NaN if the disk has none: also when the scene
+                    has snowline.enabled = false (icy solids everywhere), whose /disk
+                    attribute r_snow_au still holds the radius where T = T_sub
         timeseries  dict name -> array with first dimension ns (every /timeseries
                     dataset, including "time" [yr]); {} if the file has none
         pebbles     dict name -> array of every /pebbles dataset (r_au [au]); {} if none
@@ -89,6 +91,8 @@ class Run:
         self.attrs = attrs
         self.solver = solver
         self.config = _parse_config(attrs.get("config_toml", ""), self.path)
+        if self.config.get("snowline", {}).get("enabled") is False:
+            self.r_snow_au = np.nan     # no snow line in the run, only where T = T_sub
 
     @property
     def scene(self):

@@ -19,7 +19,7 @@ import warnings
 import h5py
 import numpy as np
 
-from postprocess import analytic, plot, plot_run, reader
+from postprocess import analytic, plot, plot_run, plot_scan, reader
 
 AU = 1.496e13    # [cm]
 YR = 3.156e7     # [s]
@@ -113,7 +113,8 @@ def add_diagnostics(path, ref, planetesimals="formed", killed=False, names=None)
     Growth field phi; pebble monitors (/pebbles/r_au, attr names, snapshot pebble_flux
     [g s^-1] and m_through [g]); /timeseries (time, pebble_flux, m_through, mass_budget)
     on 4 samples per snapshot interval; planetesimals="formed": sigma_pl(_coag, _si),
-    m_pl_*, t_first_pl growing in 1.5-4 au after 1e3 yr, "none": the same fields all
+    m_pl_*, t_first_pl growing in 1.5-4 au after 1e3 yr (formed: Sigma_pl above 1e-6 of
+    the largest initial Sigma_d, /summary/formed_threshold, as the C++), "none": the same fields all
     zero/NaN, None: no planetesimal fields; /summary unless killed. killed=True also
     leaves /timeseries/time two rows shorter than the other /timeseries datasets (the
     writer appends time last). Returns a dict of what was written.
@@ -127,7 +128,8 @@ def add_diagnostics(path, ref, planetesimals="formed", killed=False, names=None)
     si = np.where(zone[None, :] & (r_c[None, :] >= 3.0), 1e-4 * sigma_d0 * growth, 0.0)
     if planetesimals == "none":
         coag, si = np.zeros_like(coag), np.zeros_like(si)
-    formed = (coag + si) > 1e-6 * sigma_d0[None, :]
+    threshold = 1e-6 * sigma_d0.max()     # src/diagnostics.cpp kFormedFraction
+    formed = (coag + si) > threshold
     t_first = np.full((nt, n), np.nan)
     for i in range(nt):
         first = formed[: i + 1].argmax(axis=0)
@@ -171,14 +173,15 @@ def add_diagnostics(path, ref, planetesimals="formed", killed=False, names=None)
                        "m_peb_snowline": m_through[-1, 0] / M_EARTH,
                        "m_peb_r_in": m_through[-1, -1] / M_EARTH,
                        "m_dust_final": ref["m_dust"][-1] / M_EARTH,
-                       "budget_error": error[-1] / ref["m_dust"][0]}
-            for c, mask in (("coag", coag[-1] > 1e-6 * sigma_d0), ("si", si[-1] > 1e-6 * sigma_d0)):
+                       "budget_error": error[-1] / ref["m_dust"][0], "formed_threshold": threshold}
+            for c, mask in (("coag", coag[-1] > threshold), ("si", si[-1] > threshold)):
                 scalars[f"r_min_pl_{c}"] = r_c[mask].min() if mask.any() else np.nan
                 scalars[f"r_max_pl_{c}"] = r_c[mask].max() if mask.any() else np.nan
             for name, value in scalars.items():
                 write_dataset(summary, name, [value], "", name)
             write_dataset(summary, "t_first_pl", t_first[-1], "yr", "first formation")
     return {"series": series, "r_mon": r_mon, "t_first": t_first[-1], "m_coag": m_coag,
+            "threshold": threshold,
             "n_series": len(ts_time) - (2 if killed else 0)}
 
 
@@ -439,6 +442,258 @@ def check_plot_run_helpers(tmp):
     return "plot_run helpers: time_edges, mask_rectangles, mask_outline, log_limits, unit_tex"
 
 
+@contextlib.contextmanager
+def captured_figures():
+    """Collect the figures plot_run saves (list of Figure), still writing them."""
+    figures, original = [], plot_run.save
+
+    def keep(fig, run, out_path):
+        figures.append(fig)
+        original(fig, run, out_path)
+    plot_run.save = keep
+    try:
+        yield figures
+    finally:
+        plot_run.save = original
+
+
+def check_plot_run_formed_threshold(tmp):
+    # Sigma_pl at the outer edge above 1e-6 of the cell's own initial Sigma_d but below
+    # /summary/formed_threshold (1e-6 of the largest): not a planetesimal zone (the C++
+    # counts no cell there: r_max_pl_*, t_first_pl), so neither hatched nor zoomed to
+    path = os.path.join(tmp, "outer_edge.h5")
+    ref, diag = write_full_run(path)
+    threshold = diag["threshold"]
+    sigma_d0 = ref["sigma_d"][0]
+    edge = (ref["r_c"] > 100.0) & (sigma_d0 > 0)
+    assert edge.any() and np.all(0.01 * threshold > 1e-6 * sigma_d0[edge])
+    with h5py.File(path, "a") as f:
+        for name in ("sigma_pl_si", "sigma_pl"):
+            data = f["snapshots"][name][()]
+            data[1:, edge] += 0.01 * threshold
+            f["snapshots"][name][...] = data
+    run = reader.load_run(path)
+    assert plot_run.formed_threshold(run) == threshold
+    with captured_figures() as figures:
+        plot_run.plot_sigma_pl(run, os.path.join(tmp, "outer_edge_pl.png"))
+        plot_run.plot_map(run, os.path.join(tmp, "outer_edge_St.png"), **dict(plot_run.MAPS)[
+            "rt_St.png"])
+    x_hi = figures[0].axes[0].get_xlim()[1]
+    assert x_hi < 20.0, x_hi       # zoomed to the 1.5-4 au zone, widened 4x
+    hatched = [c for c in figures[1].axes[0].collections if c.get_hatch()]
+    boxes = np.concatenate([box.vertices for box in hatched[0].get_paths()])
+    assert boxes[:, 0].max() < 4.5, boxes[:, 0].max()
+    last_row = boxes[:, 1].max()
+    formed_last = np.zeros(len(ref["r_c"]), bool)
+    for box in hatched[0].get_paths():
+        x0, x1 = box.vertices[:, 0].min(), box.vertices[:, 0].max()
+        if np.isclose(box.vertices[:, 1].max(), last_row):
+            formed_last |= (ref["r_c"] > x0) & (ref["r_c"] < x1)
+    assert np.array_equal(formed_last, np.isfinite(run.summary["t_first_pl"]))
+    with h5py.File(path, "a") as f:      # a killed run: no /summary, the same threshold
+        del f["summary"]
+    assert np.isclose(plot_run.formed_threshold(reader.load_run(path)), threshold, rtol=1e-14)
+    return ("plot_run: the planetesimal zone is Sigma_pl > /summary/formed_threshold (not "
+            "1e-6 of each cell's Sigma_d): Sigma_pl figure's zoom, r-t hatching = t_first_pl")
+
+
+def check_snow_line_off(tmp):
+    # snowline.enabled = false: panoptic still writes /disk r_snow_au (where T = T_sub)
+    # and a pebble monitor named "snow line" there; the figures must not show a snow line
+    path = os.path.join(tmp, "snow_off.h5")
+    write_full_run(path)
+    with h5py.File(path, "a") as f:
+        f.attrs["config_toml"] = CONFIG_TOML + "\n[snowline]\nenabled = false\nf_ice = 0.5\n"
+    run = reader.load_run(path)
+    assert np.isnan(run.r_snow_au) and run.pebble_names[0] == "snow line"
+    assert run.config["snowline"]["enabled"] is False
+    labels = []
+    with captured_figures() as figures:
+        plot_run.plot_map(run, os.path.join(tmp, "snow_off_St.png"),
+                          **dict(plot_run.MAPS)["rt_St.png"])
+        plot_run.plot_pebble_flux(run, os.path.join(tmp, "snow_off_flux.png"))
+    for fig in figures:
+        for ax in fig.axes:
+            if ax.get_legend() is not None:
+                labels += [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels and not any(text.startswith("snow line") for text in labels), labels
+    assert any("snow line off" in text for text in labels), labels
+    fig, ax = plot.new_figure()
+    plot.mark_snow_line(ax, run)
+    assert not ax.lines
+    with h5py.File(path, "a") as f:      # the same file with the snow line on: drawn
+        f.attrs["config_toml"] = CONFIG_TOML + "\n[snowline]\nenabled = true\n"
+    assert reader.load_run(path).r_snow_au == SNOW_AU
+    return ("snowline.enabled = false: no snow line drawn or named (r_snow_au NaN), "
+            "T_sub monitor labelled")
+
+
+def check_t_first_off_axis_label(tmp):
+    # two snapshots, 0 and 1e6 yr: the r-t map's time axis starts at the row's lower edge
+    # 10^5.5 yr; the cells that formed before it (all, here: after 1e3 yr) are off the axis
+    path = os.path.join(tmp, "two_snapshots.h5")
+    write_full_run(path, time_yr=np.array([0.0, 1e6]))
+    with h5py.File(path, "a") as f:      # formed between the snapshots, as in a real run
+        t_first = f["summary/t_first_pl"][()]
+        t_first[np.isfinite(t_first)] = np.geomspace(2e3, 1e6, np.isfinite(t_first).sum())
+        f["summary/t_first_pl"][...] = t_first
+    run = reader.load_run(path)
+    t_first = run.summary["t_first_pl"]
+    with captured_figures() as figures:
+        plot_run.plot_map(run, os.path.join(tmp, "two_St.png"), **dict(plot_run.MAPS)["rt_St.png"])
+    ax = figures[0].axes[0]
+    bottom = ax.get_ylim()[0]
+    assert np.isclose(bottom, 10 ** 5.5), bottom
+    label = [t.get_text() for t in ax.get_legend().get_texts() if "first" in t.get_text()][0]
+    n_early = int(np.sum(t_first < bottom))
+    expected = f"{n_early} cells before {plot.format_years(bottom)}, off"
+    assert n_early > 0 and expected in label, label
+    return f"r-t map: t_first_pl cells below the time axis counted against its bottom ({label})"
+
+
+def write_scan_summary(path_dir, axes, status, outcomes, sampling):
+    """DIR/summary.h5 in the layout of `panoptic scan` (README, Scans): axes {key: (values,
+    spacing)}, status (list of str), outcomes {name: (values, units)}."""
+    os.makedirs(path_dir, exist_ok=True)
+    with h5py.File(os.path.join(path_dir, "summary.h5"), "w") as f:
+        f.attrs["axes"] = ",".join(axes)
+        f.attrs["sampling"] = sampling
+        for key, (values, spacing) in axes.items():
+            f.create_dataset(f"axes/{key}", data=np.asarray(values, float))
+            f[f"axes/{key}"].attrs["spacing"] = spacing
+        f.create_dataset("runs/status", data=np.array([x.encode() for x in status]))
+        f.create_dataset("runs/name", data=np.array([f"run_{i:05d}".encode()
+                                                     for i in range(len(status))]))
+        for name, (values, units) in outcomes.items():
+            f.create_dataset(f"outcome/{name}", data=np.asarray(values, float))
+            f[f"outcome/{name}"].attrs["units"] = units
+
+
+def marker_lines(ax, label):
+    """The Line2D of ax with the given legend label."""
+    return [line for line in ax.get_lines() if line.get_label() == label]
+
+
+def check_plot_scan(tmp):
+    # 3 x 2 grid: run 1 failed (NaN outcomes), run 4 completed without planetesimals
+    # (t_first_pl_min NaN)
+    mass, alpha = np.repeat([0.5, 1.0, 2.0], 2), np.tile([1e-4, 1e-2], 3)
+    status = ["completed", "failed", "completed", "completed", "completed", "completed"]
+    m_pl = np.array([1.0, np.nan, 3.0, 0.0, 5.0, 6.0])
+    t_first = np.array([700.0, np.nan, 300.0, np.nan, 100.0, 50.0])
+    grid_dir = os.path.join(tmp, "scan_grid")
+    write_scan_summary(grid_dir, {"star.mass_msun": (mass, "list"), "disk.alpha": (alpha, "log")},
+                       status, {"m_pl_coag": (m_pl, "M_earth"), "t_first_pl_min": (t_first, "yr")},
+                       "grid")
+    summary = plot_scan.load_summary(grid_dir)
+    fig = plot_scan.line_figure(summary, "star.mass_msun", ["m_pl_coag", "t_first_pl_min"],
+                                os.path.join(tmp, "scan_lines.png"))
+    ax_m, ax_t = fig.axes[:2]
+    # the failed run along the bottom of the panel (axes coordinates), not at a value
+    cross, = marker_lines(ax_m, "not completed")
+    to_axes = (cross.get_transform() - ax_m.transAxes).transform(cross.get_xydata())
+    assert np.allclose(cross.get_xdata(), [0.5]) and np.allclose(to_axes[:, 1], 0.03), to_axes
+    # the run without a value of t_first_pl_min is shown, at its mass
+    circle, = marker_lines(ax_t, "completed, no value (NaN)")
+    assert np.allclose(circle.get_xdata(), [1.0])
+    assert not marker_lines(ax_m, "completed, no value (NaN)")
+    # one joined line per alpha: the runs of a line differ only in the mass
+    data = [line for line in ax_m.get_lines() if line.get_label().startswith("disk.alpha")]
+    assert [line.get_linestyle() for line in data] == ["-", "-"]
+    assert np.allclose(data[0].get_ydata(), [1.0, 3.0, 5.0]), data[0].get_ydata()
+    assert np.allclose(data[1].get_ydata(), [0.0, 6.0]), data[1].get_ydata()
+    fig = plot_scan.map_figure(summary, "star.mass_msun", "disk.alpha", "t_first_pl_min",
+                               os.path.join(tmp, "scan_map.png"))
+    ax = fig.axes[0]
+    mesh = [c for c in ax.collections if hasattr(c, "get_array") and c.get_array() is not None][0]
+    Z = np.ma.filled(mesh.get_array(), np.nan).reshape(2, 3)   # rows alpha, columns mass
+    assert np.allclose(Z, [[700.0, 300.0, 100.0], [np.nan, np.nan, 50.0]], equal_nan=True), Z
+    circle, = marker_lines(ax, "completed, no value (NaN)")
+    cross, = marker_lines(ax, "not completed")
+    assert np.allclose(circle.get_xydata(), [[1.0, 1e-2]]) and np.allclose(
+        cross.get_xydata(), [[0.5, 1e-2]])
+
+    # Latin hypercube over three axes: points not joined, the NaN run marked on the map
+    rng = np.random.default_rng(1)
+    n = 8
+    lhs = {"star.mass_msun": (rng.uniform(0.3, 2.0, n), "lin"),
+           "disk.alpha": (10 ** rng.uniform(-4, -2, n), "log"),
+           "disk.T_1au": (rng.uniform(150, 300, n), "lin")}
+    m_peb = rng.uniform(0.1, 1.0, n)
+    m_peb[3] = np.nan
+    lhs_dir = os.path.join(tmp, "scan_lhs")
+    write_scan_summary(lhs_dir, lhs, ["completed"] * n, {"m_peb_snowline": (m_peb, "M_earth")},
+                       "lhs")
+    summary = plot_scan.load_summary(lhs_dir)
+    fig = plot_scan.line_figure(summary, "star.mass_msun", ["m_peb_snowline"],
+                                os.path.join(tmp, "lhs_lines.png"))
+    points = [line for line in fig.axes[0].get_lines() if line.get_marker() == "o"
+              and not line.get_label().startswith("completed")]
+    assert points and all(line.get_linestyle() == "None" for line in points)
+    assert "not joined" in fig._suptitle.get_text()
+    fig = plot_scan.map_figure(summary, "star.mass_msun", "disk.alpha", "m_peb_snowline",
+                               os.path.join(tmp, "lhs_map.png"))
+    circle, = marker_lines(fig.axes[0], "completed, no value (NaN)")
+    assert np.allclose(circle.get_xydata(),
+                       [[lhs["star.mass_msun"][0][3], lhs["disk.alpha"][0][3]]])
+    # a list axis 1e-4, 1e-3, 1e-2 (two decades, 100 x 1e-4 rounds above 1e-2): log
+    list_dir = os.path.join(tmp, "scan_list")
+    write_scan_summary(list_dir, {"disk.alpha": ([1e-4, 1e-3, 1e-2], "list"),
+                                  "star.mass_msun": ([0.5, 1.0, 1.5], "list")},
+                       ["completed"] * 3, {"m_pl_coag": ([1.0, 2.0, 3.0], "M_earth")}, "grid")
+    axes = plot_scan.load_summary(list_dir)["axes"]
+    assert axes["disk.alpha"][1] == "log" and axes["star.mass_msun"][1] == "list", axes
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        status = plot_scan.main([grid_dir])
+    written = out.getvalue().split()
+    assert status == 0 and all(_is_png(p) for p in written) and len(written) == 2, written
+    return ("plot_scan: failed runs along the panel bottom, NaN outcomes marked (lines, grid "
+            "map, LHS scatter), map cells in place, LHS points not joined")
+
+
+def check_dust_to_gas_map_centre(tmp):
+    # gas drained at the outer edge after t = 0 (an evolving LBP disk): ratios up to
+    # ~1e10 there; the map's white must stay the initial ratio (0.01 here), not move to
+    # the middle of the range and be called "initial"
+    path = os.path.join(tmp, "drained_edge.h5")
+    ref = write_run(path)
+    with h5py.File(path, "a") as f:
+        sigma_g = f["snapshots/sigma_g"][()]
+        edge = ref["r_c"] > 0.3 * ref["r_c"][-1]
+        sigma_g[1:, edge] *= 1e-12
+        f["snapshots/sigma_g"][...] = sigma_g
+    run = reader.load_run(path)
+    initial = plot_run.dust_to_gas_reference(run)
+    assert np.isclose(initial, 0.01, rtol=1e-6), initial
+    with captured_figures() as figures:
+        plot_run.plot_map(run, os.path.join(tmp, "drained_dtg.png"),
+                          **dict(plot_run.MAPS)["rt_dust_to_gas.png"])
+    mesh = figures[0].axes[0].collections[0]
+    assert np.isclose(10 ** mesh.norm.vcenter, initial, rtol=1e-9), 10 ** mesh.norm.vcenter
+    bar_label = figures[0].axes[1].get_ylabel()
+    assert f"initial {initial:.3g}" in bar_label, bar_label
+    return f"dust-to-gas map with a drained gas edge: white = the initial ratio ({bar_label})"
+
+
+def check_plot_unfinished_title(tmp):
+    # a killed run's profile figures must not call its last snapshot t_end
+    titles = {}
+    for label, options in (("killed", {"killed": True}), ("complete", {})):
+        path = os.path.join(tmp, f"title_{label}.h5")
+        write_run(path, **options)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            run = reader.load_run(path)
+        indices = plot.select_snapshots(run.time)
+        for make in (plot.plot_sigma_d, plot.plot_dust_to_gas):
+            fig = make(run, indices, os.path.join(tmp, f"title_{label}.png"))
+            titles.setdefault(label, []).append(fig.axes[0].get_title())
+    assert all("unfinished, last snapshot" in t and "end" not in t
+               for t in titles["killed"]), titles
+    assert all("t_\\mathrm{end}" in t and "unfinished" not in t for t in titles["complete"]), titles
+    return f"plot: an unfinished run's profile figures say so ({titles['killed'][0]!r})"
+
+
 def check_i0e_vs_numpy(tmp):
     x = np.concatenate([np.linspace(0.0, 60.0, 60001), np.geomspace(1e-10, 700.0, 20001)])
     ref = np.i0(x) * np.exp(-x)
@@ -559,6 +814,9 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
           check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
           check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full,
+          check_plot_run_formed_threshold,
+          check_snow_line_off, check_t_first_off_axis_label, check_plot_scan,
+          check_dust_to_gas_map_centre, check_plot_unfinished_title,
           check_plot_run_transport_only, check_plot_run_degraded,
           check_plot_run_failure_status, check_plot_run_single_snapshot]
 
