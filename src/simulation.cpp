@@ -731,8 +731,16 @@ std::string Simulation::summary() const {
     s << "no snow line: warmer than disk.T_sub everywhere (all silicate)\n";
   else if (r_snow_au == 0.0)
     s << "no snow line: colder than disk.T_sub everywhere (all ice)\n";
-  else
-    s << "snow line at " << r_snow_au << " au\n";
+  else {
+    // where T = T_sub may lie off the grid (a warm disk with q > 0: 3.5e5 au was printed
+    // as if it were a snow line of the run)
+    s << "snow line at " << r_snow_au << " au";
+    if (r_snow_au * kAu >= grid_.r_f(n))
+      s << " (beyond the outer edge: all silicate on the grid)";
+    else if (r_snow_au * kAu <= grid_.r_f(0))
+      s << " (inside the inner edge: all ice on the grid)";
+    s << "\n";
+  }
   s << "state: " << L.size() << " variables; per cell:";
   for (int k = 0; k < L.n_cell_vars(); ++k) s << " " << L.cell_var(k).name;
   s << "; global:";

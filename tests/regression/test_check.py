@@ -1,0 +1,67 @@
+"""`panoptic check SCENE` (README "Scenes"): every shipped scene passes and prints the run
+it would make (grid, gas disk, state layout); the snow line is reported where it falls,
+and said to be off the grid when T = T_sub lies beyond the outer or inside the inner edge
+(a warm disk printed "snow line at 13840.8 au" as if the run had one)."""
+import glob
+import os
+import subprocess
+
+from common import REPO, Checks, parse_args
+
+
+def check(exe, scene, *sets):
+    cmd = [exe, "check", scene]
+    for s in sets:
+        cmd += ["--set", s]
+    return subprocess.run(cmd, capture_output=True, text=True)
+
+
+def gas_line(p):
+    return next((ln for ln in p.stdout.splitlines() if "gas disk:" in ln), "")
+
+
+def main():
+    args = parse_args()
+    c = Checks()
+
+    scenes = sorted(glob.glob(os.path.join(REPO, "params", "*.toml")) +
+                    glob.glob(os.path.join(REPO, "params", "tests", "*.toml")))
+    c.check(len(scenes) >= 10, f"{len(scenes)} scenes found in params/ and params/tests/")
+    for scene in scenes:
+        p = check(args.exe, scene)
+        name = os.path.relpath(scene, REPO)
+        c.check(p.returncode == 0 and "grid:" in p.stdout and "state:" in p.stdout and
+                gas_line(p) != "",
+                f"check {name}: exit {p.returncode}, prints grid, gas disk and state "
+                f"{p.stderr.strip()}")
+
+    fiducial = os.path.join(REPO, "params", "fiducial.toml")
+    # spec §1.7: T = T_1au r^-q = T_sub at r = (T_1au / T_sub)^(1/q)
+    cases = [
+        ("on the grid", [], (280.0 / 170.0) ** 2, ""),
+        ("beyond the outer edge (300 au)", ["disk.T_1au=20000"], (20000.0 / 170.0) ** 2,
+         "(beyond the outer edge: all silicate on the grid)"),
+        ("inside the inner edge (5 au)", ["grid.r_in_au=5"], (280.0 / 170.0) ** 2,
+         "(inside the inner edge: all ice on the grid)"),
+    ]
+    for label, sets, r_snow, note in cases:
+        line = gas_line(check(args.exe, fiducial, *sets))
+        shown = line.split("snow line at ")[-1].split(" au")[0] if "snow line at" in line \
+            else "nan"
+        ok = abs(float(shown) / r_snow - 1) < 5e-6
+        c.check(ok and (note in line if note else "(" not in line.split("snow line")[-1]),
+                f"snow line {label}: {line.strip()!r} (expected {r_snow:.6g} au "
+                f"{note or 'with no note'})")
+    for label, sets, text in [
+            ("off", ["snowline.enabled=false"], "snow line off"),
+            ("q = 0, colder than T_sub", ["disk.q=0", "disk.T_1au=100"],
+             "no snow line: colder than disk.T_sub everywhere (all ice)"),
+            ("q = 0, warmer than T_sub", ["disk.q=0", "disk.T_1au=200"],
+             "no snow line: warmer than disk.T_sub everywhere (all silicate)")]:
+        line = gas_line(check(args.exe, fiducial, *sets))
+        c.check(text in line, f"snow line {label}: {line.strip()!r}")
+    c.finish()
+
+
+if __name__ == "__main__":
+    main()
