@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -337,10 +338,15 @@ RunInspection inspect_run(const fs::path& h5path, const std::string& config_toml
 }
 
 void write_atomically(const fs::path& path, std::string_view text) {
-  const fs::path tmp = path.string() + ".tmp" + std::to_string(getpid());
-  const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // A name no other process can hold: processes of one scan on different nodes of a
+  // shared file system (MPI ranks, array tasks) may have the same PID, and ".tmpPID"
+  // would then be one file written by both. mkstemp creates it exclusively (O_EXCL).
+  std::string name = path.string() + ".tmpXXXXXX";
+  const int fd = mkostemp(name.data(), O_CLOEXEC);
+  const fs::path tmp = name;
   if (fd < 0)
     throw IoError(tmp.string() + ": cannot write (" + std::strerror(errno) + ")");
+  fchmod(fd, 0644);  // mkstemp's 0600 would hide the records from the user's group
   // a failed write (disk full, quota: some file systems report it only at fsync or
   // close) leaves the old file and no temporary one, which would fill the disk further
   const auto fail = [&](const std::string& what, int e) {

@@ -77,6 +77,25 @@ TEST(ScanSummary, FailedWriteLeavesTheOldFileAndNoTemporary) {
   fs::remove_all(d);
 }
 
+TEST(ScanSummary, TemporaryNameIsNotAnotherProcessesFile) {
+  // Processes of one scan on two nodes of a shared file system may have the same PID:
+  // a temporary named after the PID alone (".tmpPID", as before) would be written by both
+  // and renamed away under the other. The file at that name stands for the other's.
+  const fs::path d = fresh_dir("unique");
+  const fs::path others = d / ("record.tmp" + std::to_string(::getpid()));
+  { std::ofstream(others) << "another process's record"; }
+  write_atomically(d / "record", "this process's record");
+  EXPECT_EQ(slurp(d / "record"), "this process's record");
+  ASSERT_TRUE(fs::exists(others));
+  EXPECT_EQ(slurp(others), "another process's record");
+  EXPECT_EQ(files_in(d).size(), 2u);  // no temporary of its own left
+  // readable like any file the user writes (mkstemp creates 0600)
+  EXPECT_EQ(fs::status(d / "record").permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
+                fs::perms::others_read);
+  fs::remove_all(d);
+}
+
 TEST(ScanSummary, FailedSummaryLeavesTheOldSummaryAndNoTemporary) {
   const fs::path d = fresh_dir("summary");
   const Manifest m = expand_scan_text(
