@@ -396,8 +396,8 @@ std::vector<std::string> check_compatible(const Checkpoint& chk, const fs::path&
         "continued:" +
         differing +
         "\nA restart may change only the output times (output.t_end_yr, t_first_yr, "
-        "n_snapshots, times_yr), output.file, the solver.* settings, checkpoint.* and "
-        "observe.*. "
+        "n_snapshots, times_yr), output.file, the solver.* settings, checkpoint.*, "
+        "observe.* and meta.*. "
         "Set these keys back to the checkpoint's values" +
         example + ", or start a new run without --restart.");
   if (chk.layout_signature != layout_signature)

@@ -383,6 +383,18 @@ TEST(CheckpointCompatibility, GridDiskAndProcessKeysAreRefusedByName) {
       EXPECT_NE(m.find("run.chk.h5"), std::string::npos) << m;
       EXPECT_NE(m.find("--set " + name + "="), std::string::npos) << "the fix: " << m;
       EXPECT_EQ(ConfigError(m).exit_code(), 2);
+      // the message names every key a restart may change (meta.* was left out), by its
+      // name, its table's "table.*" or, in a list of one table, its leaf
+      for (const KeySpec& spec : scene_keys()) {
+        if (!may_change_on_restart(spec.key)) continue;
+        const std::string table = spec.key.substr(0, spec.key.find('.'));
+        const std::string leaf = spec.key.substr(table.size() + 1);
+        EXPECT_TRUE(m.find(spec.key) != std::string::npos ||
+                    m.find(table + ".*") != std::string::npos ||
+                    m.find(" " + leaf + ",") != std::string::npos ||
+                    m.find(" " + leaf + ")") != std::string::npos)
+            << spec.key << " may change but the message does not say so: " << m;
+      }
     }
   }
 }
