@@ -16,7 +16,14 @@
 using namespace panoptic;
 
 int main(int argc, char** argv) {
-  const double t_end_yr = argc > 1 ? std::atof(argv[1]) : 1e5;
+  // one optional argument, a positive number of years ("--help" was read as 0 yr)
+  char* end = nullptr;
+  const double t_end_yr = argc > 1 ? std::strtod(argv[1], &end) : 1e5;
+  if (argc > 2 || (argc > 1 && (end == argv[1] || *end != '\0' || !(t_end_yr > 0.0)))) {
+    std::fprintf(stderr,
+                 "usage: bench_transport [t_end_yr]   (a number > 0; default 1e5)\n");
+    return 2;
+  }
   const std::string scene = std::string(PANOPTIC_SOURCE_DIR) + "/params/fiducial.toml";
   std::printf(
       "dust transport alone (params/fiducial.toml, prescribed St), to %.0e yr, "
