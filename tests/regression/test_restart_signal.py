@@ -139,13 +139,16 @@ def main():
            "-o", setup]
     for s in SETS[:-1] + ["output.t_end_yr=2e7"]:
         cmd += ["--set", s]
+    copy = setup + ".restart.tmp"
+    if os.path.exists(copy):  # left by a killed run: it would be taken for this one's
+        os.remove(copy)
     t0 = time.time()
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     # Sent while the restart copies its output (src/run_output.cpp: the copy is written
     # beside it as OUTPUT.restart.tmp, by a child process), i.e. surely in the set-up and
     # after the process has started: a fixed 0.25 s after the start came, on a loaded
     # machine, before the executable was even loaded (killed: exit -15).
-    copying = wait_for_file(setup + ".restart.tmp", proc, timeout=60)
+    copying = wait_for_file(copy, proc, timeout=60)
     t_signal = time.time() - t0
     header = []  # when the header, printed once the set-up is done, came
     reader = threading.Thread(target=lambda: header.extend(
