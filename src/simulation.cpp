@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -408,6 +409,17 @@ void Simulation::check_start_is_finite() const {
          "material.* and grid.* values nearer to physical ones (a grid reaching far "
          "beyond an LBP disk's r_c_au has no gas there; panoptic check prints the "
          "resolved scene)";
+    // the likely culprits: values the scene set far from their defaults (1e308, 1e-300)
+    std::string far;
+    for (const KeySpec& spec : scene_keys()) {
+      if (spec.type != KeyType::kReal || !cfg_.user_set(spec.key)) continue;
+      const double v = cfg_.real(spec.key),
+                   d = std::strtod(spec.default_toml.c_str(), nullptr);
+      if (d != 0.0 && v != 0.0 && std::abs(std::log10(std::abs(v / d))) > 3.0)
+        far += (far.empty() ? "" : ", ") + spec.key + " = " + num(v) + " (default " +
+               spec.default_toml + ", " + cfg_.where(spec.key) + ")";
+    }
+    if (!far.empty()) m << "; set far from their defaults (over 1e3 x): " << far;
     throw ConfigError(m.str());
   };
   const auto bad = [](double v) { return !(std::isfinite(v) && v > 0.0); };

@@ -38,9 +38,10 @@ CASES = [
     # keys inside their ranges that combine into a state that is not finite (CVODE said
     # only that its first right-hand side failed, exit 3)
     ("non-finite initial dust", None, ["--set", "dust.dust_to_gas=1e308"],
-     ["initial Sigma_d", "inf", "dust.*"]),
+     ["initial Sigma_d", "inf", "dust.*",
+      "far from their defaults (over 1e3 x): dust.dust_to_gas = 1e+308 (default 0.01, --set)"]),
     ("no gas in a cell", None, ["--set", 'disk.model="lbp"', "--set", "disk.r_c_au=1e-6"],
-     ["Sigma_g", "= 0", "disk.*"]),
+     ["Sigma_g", "= 0", "disk.*", "disk.r_c_au = 1e-06 (default 60.0, --set)"]),
     # a temperature rising outward puts ice inside silicate (the snow line was NaN, and the
     # whole disk was taken as ice, with exit 0)
     ("temperature rising outward with a snow line", None, ["--set", "disk.q=-0.5"],
