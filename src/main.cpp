@@ -69,7 +69,7 @@ extern "C" void on_signal(int sig, siginfo_t* info, void*) {
 void on_stop_signals() {
   struct sigaction sa {};
   sa.sa_sigaction = on_signal;
-  sa.sa_flags = SA_SIGINFO;
+  sa.sa_flags = SA_SIGINFO | SA_RESTART;  // as std::signal: slow calls (waitpid) go on
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);

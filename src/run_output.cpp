@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -58,7 +59,16 @@ std::string rebuild(const std::filesystem::path& path) {
     ::_exit(code);
   }
   int status = 0;
-  if (child < 0 || ::waitpid(child, &status, 0) != child)
+  pid_t waited = -1;
+  if (child > 0) {
+    // a stop signal (SIGTERM during the set-up) must not end the wait while the child
+    // still writes the copy: it was taken for "no process", the file was continued in
+    // place and the copy left behind (exit 4)
+    do {
+      waited = ::waitpid(child, &status, 0);
+    } while (waited < 0 && errno == EINTR);
+  }
+  if (child < 0 || waited != child)
     return "could not rebuild it (no process for the copy); continued in place";
   std::string why;
   if (WIFSIGNALED(status))

@@ -157,6 +157,12 @@ def main():
     proc.send_signal(signal.SIGTERM)
     proc.wait()
     reader.join()
+    err = proc.stderr.read()
+    time.sleep(0.5)  # a copying child left running would still be writing
+    c.check(not os.path.exists(copy) and "could not rebuild" not in err,
+            f"the restart waited for its copy and continues it, leaving no {copy} "
+            f"(the stop signal broke off the wait: 'no process for the copy', the output "
+            f"continued in place and the copy left behind) {err.strip()!r}")
     t_header = next((t for t, ln in header if ln.startswith("panoptic ")), None)
     when = (f"while it copied its output, at {t_signal:.2f} s; the set-up " +
             ("never ended: killed" if t_header is None else f"ended at {t_header:.2f} s"))
