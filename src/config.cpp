@@ -911,6 +911,57 @@ Config load_scene(const std::filesystem::path& file,
   return config;
 }
 
+// ---------------------------------------------------------------------------------------
+// Keys set but not used (KeySpec::used_when)
+
+namespace {
+
+// "erosion.model = \"halt\" or \"balance\""
+std::string condition_text(const UsedWhen& c) {
+  std::string out = c.key + " = ";
+  for (size_t i = 0; i < c.values.size(); ++i) out += (i ? " or " : "") + c.values[i];
+  return out;
+}
+
+// A key that other keys' use depends on (disk.model, growth.enabled, ...).
+bool is_switch(std::string_view key) {
+  for (const KeySpec& spec : scene_keys()) {
+    for (const UsedWhen& c : spec.used_when) {
+      if (c.key == key) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::string> unused_key_warnings(const Config& config) {
+  std::vector<std::string> out;
+  for (const KeySpec& spec : scene_keys()) {
+    if (spec.used_when.empty() || !config.user_set(spec.key)) continue;
+    const auto it = config.values_.find(spec.key);
+    if (it == config.values_.end()) continue;
+    const std::string value = toml_value(it->second);
+    std::vector<std::string> now, wanted;  // the conditions that fail
+    for (const UsedWhen& c : spec.used_when) {
+      const auto sw = config.values_.find(c.key);
+      const std::string v = sw == config.values_.end() ? "" : toml_value(sw->second);
+      if (std::find(c.values.begin(), c.values.end(), v) == c.values.end()) {
+        now.push_back(c.key + " = " + v);
+        wanted.push_back(condition_text(c));
+      }
+    }
+    if (now.empty()) continue;
+    // fragmentation.enabled = false with growth off: an explicit "off" turns nothing on
+    if (is_switch(spec.key) && value == toml_value(default_values().at(spec.key)))
+      continue;
+    out.push_back("panoptic: warning: " + spec.key + " = " + value + " (" +
+                  config.where(spec.key) + ") is not used: " + join(now, ", ") +
+                  "; set " + join(wanted, " and ") + " to use it, or remove the key");
+  }
+  return out;
+}
+
 std::string reference_toml() {
   std::string out =
       "# panoptic scene reference: every scene key, with its default value and its "
@@ -921,7 +972,9 @@ std::string reference_toml() {
       "output).\n"
       "# A scene sets only the keys it changes; every other key keeps the default "
       "below.\n"
-      "# Comments: [unit] meaning (allowed values).\n";
+      "# Comments: [unit] meaning (allowed values); \"read only with\" names the\n"
+      "# switches a run needs to read the key (`panoptic check` and `run` warn about a\n"
+      "# key set without them).\n";
   std::string table;
   std::vector<std::pair<std::string, std::string>> lines;
   const auto flush = [&] {
@@ -946,6 +999,11 @@ std::string reference_toml() {
     } else if (const std::string range = range_text(spec); !range.empty()) {
       comment +=
           spec.type == KeyType::kRealList ? " (each " + range + ")" : " (" + range + ")";
+    }
+    if (!spec.used_when.empty()) {
+      std::vector<std::string> conditions;
+      for (const UsedWhen& c : spec.used_when) conditions.push_back(condition_text(c));
+      comment += "; read only with " + join(conditions, " and ");
     }
     lines.emplace_back(std::string(leaf_of(spec.key)) + " = " + spec.default_toml,
                        comment);

@@ -20,6 +20,13 @@ namespace panoptic {
 
 enum class KeyType { kReal, kInt, kBool, kString, kRealList };
 
+//! A condition under which a run reads a key: the switch `key` holds one of `values`.
+struct UsedWhen {
+  std::string key;  //!< the switch, "disk.model"
+  //! its values that use the key, as canonical TOML literals: "\"lbp\"", "true", "[]"
+  std::vector<std::string> values;
+};
+
 //! One documented scene key. The schema is the single source of truth for what a scene
 //! may contain, for the defaults, for `panoptic check` and for params/reference.toml.
 struct KeySpec {
@@ -33,6 +40,9 @@ struct KeySpec {
   bool min_exclusive = false;  //!< make min a strict bound (> min)
   bool max_exclusive = false;  //!< make max a strict bound (< max)
   std::vector<std::string> choices;  //!< allowed values of a string key (empty = any)
+  //! `panoptic run` reads the key only when every condition holds (empty: always); a key
+  //! the user set that is not read gets a warning (unused_key_warnings)
+  std::vector<UsedWhen> used_when;
 };
 
 //! Every key a scene may hold, grouped by table, in the order they are documented.
@@ -93,6 +103,13 @@ Config load_scene_text(std::string_view text, const std::string& name,
 //! without the crash guard of src/toml_guard.hpp, which costs a fork() per value.
 Config apply_trusted_overrides(const Config& base,
                                std::span<const std::string> overrides);
+
+//! One line per key the scene file or --set set that a run of this scene does not read
+//! (its KeySpec::used_when fails: disk.r_c_au without disk.model = "lbp"), naming the
+//! key, where it was set, the switches that leave it unused and the fix. A switch set to
+//! its default (off) value is not reported: it turns nothing on. Warnings, not errors: a
+//! scan's base scene may carry keys for an axis that switches the model.
+std::vector<std::string> unused_key_warnings(const Config& config);
 
 //! params/reference.toml as generated from the schema: every key, commented, with units
 //! and defaults. A unit test checks that the file in the repository equals this text.

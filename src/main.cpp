@@ -149,6 +149,13 @@ RunOutput new_output(const Config& cfg, const Simulation& sim, const fs::path& p
   return out;
 }
 
+//! One warning per key the scene set that this run does not read (disk.r_c_au without
+//! disk.model = "lbp"): to stderr, the exit code unchanged.
+void warn_unused_keys(const Config& cfg) {
+  for (const std::string& w : unused_key_warnings(cfg))
+    std::fprintf(stderr, "%s\n", w.c_str());
+}
+
 //! The command that continues this run from `chk`, for copy and paste.
 std::string restart_command(const RunArgs& a, const fs::path& chk) {
   const auto quote = [](const std::string& s) {
@@ -198,6 +205,7 @@ int run(const RunArgs& a) {
   // 2 scene
   const Config cfg = load_scene(a.scene, a.overrides);
   validate_scene(cfg);
+  warn_unused_keys(cfg);
   const double max_wall = a.max_wall_given ? parse_duration(a.max_wall) : 0.0;
   // 3 model
   Simulation sim(cfg);
@@ -399,6 +407,7 @@ int run(const RunArgs& a) {
 int check(const std::string& scene, const std::vector<std::string>& overrides) {
   const Config cfg = load_scene(scene, overrides);
   validate_scene(cfg);
+  warn_unused_keys(cfg);
   Simulation sim(cfg);
   std::printf("# scene %s is valid.\n", scene.c_str());
   std::string summary = sim.summary(), commented;

@@ -89,6 +89,30 @@ KeySpec real_table(std::string key, std::string def, std::string unit, std::stri
   return k;
 }
 
+// When a run reads a key (KeySpec::used_when), taken from the code that reads it
+// (src/simulation.cpp, disk/gas_disk.cpp, physics/growth_rates.hpp,
+// physics/planetesimals_cell_rates.hpp, src/observe.cpp). Values are TOML literals.
+UsedWhen is(std::string key, std::vector<std::string> values) {
+  return UsedWhen{std::move(key), std::move(values)};
+}
+std::string toml_str(const std::string& s) { return "\"" + s + "\""; }
+UsedWhen growth_on() { return is("growth.enabled", {"true"}); }
+UsedWhen disk_model(const std::string& m) { return is("disk.model", {toml_str(m)}); }
+UsedWhen dust_init(const std::string& i) { return is("dust.init", {toml_str(i)}); }
+UsedWhen erosion(std::vector<std::string> models) {
+  for (std::string& m : models) m = toml_str(m);
+  return is("erosion.model", std::move(models));
+}
+UsedWhen si(std::vector<std::string> models) {
+  for (std::string& m : models) m = toml_str(m);
+  return is("planetesimals.si", std::move(models));
+}
+
+KeySpec when(std::vector<UsedWhen> conditions, KeySpec k) {
+  k.used_when = std::move(conditions);
+  return k;
+}
+
 std::vector<KeySpec> make_keys() {
   return {
       // [meta]: documentation only.
@@ -104,18 +128,22 @@ std::vector<KeySpec> make_keys() {
       choice("disk.model", "powerlaw", {"powerlaw", "lbp"},
              "gas surface density: powerlaw = MMSN-like (§1.2 A), lbp = Lynden-Bell & "
              "Pringle similarity profile (§1.2 B)"),
-      positive("disk.sigma_1au", "1700.0", "g cm^-2",
-               "powerlaw: gas surface density at 1 au (MMSN 1700)"),
-      real("disk.p", "1.5", "", "powerlaw: Sigma_g ∝ r^-p", -5.0, false, 5.0, false),
-      positive("disk.m_disk_msun", "0.05", "M_sun", "lbp: total gas mass of the disk"),
-      positive("disk.r_c_au", "60.0", "au", "lbp: characteristic radius r_c"),
-      real("disk.gamma", "1.0", "",
-           "lbp: exponent gamma of the initial profile Sigma ∝ (r/r_c)^-gamma "
-           "exp(-(r/r_c)^(2 "
-           "- gamma)) (§1.2, the similarity solution for nu ∝ r^gamma; an evolving gas "
-           "uses "
-           "nu = alpha c_s H ∝ r^(3/2 - q) whatever gamma is)",
-           -2.0, false, 2.0, true),
+      when({disk_model("powerlaw")},
+           positive("disk.sigma_1au", "1700.0", "g cm^-2",
+                    "powerlaw: gas surface density at 1 au (MMSN 1700)")),
+      when({disk_model("powerlaw")}, real("disk.p", "1.5", "", "powerlaw: Sigma_g ∝ r^-p",
+                                          -5.0, false, 5.0, false)),
+      when({disk_model("lbp")}, positive("disk.m_disk_msun", "0.05", "M_sun",
+                                         "lbp: total gas mass of the disk")),
+      when({disk_model("lbp")},
+           positive("disk.r_c_au", "60.0", "au", "lbp: characteristic radius r_c")),
+      when({disk_model("lbp")},
+           real("disk.gamma", "1.0", "",
+                "lbp: exponent gamma of the initial profile Sigma ∝ (r/r_c)^-gamma "
+                "exp(-(r/r_c)^(2 - gamma)) (§1.2, the similarity solution for nu ∝ "
+                "r^gamma; an evolving gas uses nu = alpha c_s H ∝ r^(3/2 - q) whatever "
+                "gamma is)",
+                -2.0, false, 2.0, true)),
       positive("disk.T_1au", "280.0", "K", "temperature at 1 au for L_* = L_sun (§1.3)"),
       real("disk.q", "0.5", "", "T ∝ r^-q (§1.3)", -2.0, false, 3.0, false),
       real("disk.T_floor", "10.0", "K", "temperature floor (§1.3)", 0.0, false),
@@ -130,106 +158,147 @@ std::vector<KeySpec> make_keys() {
           "gas.evolve", "false",
           "evolve Sigma_g by viscous diffusion (nu = alpha c_s H); the gas velocity then "
           "enters the dust drift"),
-      choice(
-          "gas.inner_bc", "free_flow", {"free_flow", "zero_torque"},
-          "inner boundary of the evolving gas: free_flow = accretes through r_in as if "
-          "the disk went on; zero_torque = nu Sigma_g r^(1/2) = 0 at r_in"),
+      when(
+          {is("gas.evolve", {"true"})},
+          choice("gas.inner_bc", "free_flow", {"free_flow", "zero_torque"},
+                 "inner boundary of the evolving gas: free_flow = accretes through r_in "
+                 "as if the disk went on; zero_torque = nu Sigma_g r^(1/2) = 0 at r_in")),
 
       // [dust] initial condition, spec §6.4
-      positive("dust.dust_to_gas", "0.01", "",
+      when({dust_init("dust_to_gas")},
+           positive(
+               "dust.dust_to_gas", "0.01", "",
                "initial Sigma_d / Sigma_g outside the snow line (§1.7 Z_out; inside it "
-               "(1 - snowline.f_ice) times this)"),
+               "(1 - snowline.f_ice) times this)")),
       choice(
           "dust.init", "dust_to_gas", {"dust_to_gas", "gaussian_ring"},
           "initial Sigma_d: dust_to_gas = dust_to_gas * Sigma_g; gaussian_ring = a thin "
           "ring diffused to Gaussian width ring_width_au (the exact diffusing-ring "
           "profile, ~Gaussian for width << radius) on a floor of sigma_floor_rel * "
           "Sigma_g"),
-      positive("dust.ring_r_au", "30.0", "au", "gaussian_ring: ring centre"),
-      positive("dust.ring_width_au", "2.0", "au",
-               "gaussian_ring: Gaussian width (standard deviation)"),
-      positive("dust.ring_sigma", "1.0", "g cm^-2", "gaussian_ring: peak Sigma_d"),
-      real("dust.sigma_floor_rel", "1e-30", "",
-           "gaussian_ring: Sigma_d / Sigma_g outside the ring (§6.4; not a floor during "
-           "the run: m and phi of a nearly empty cell are decoded through a floor set by "
-           "solver.atol_sigma)",
-           0.0, false, 1e-3, false),
+      when({dust_init("gaussian_ring")},
+           positive("dust.ring_r_au", "30.0", "au", "gaussian_ring: ring centre")),
+      when({dust_init("gaussian_ring")},
+           positive("dust.ring_width_au", "2.0", "au",
+                    "gaussian_ring: Gaussian width (standard deviation)")),
+      when({dust_init("gaussian_ring")},
+           positive("dust.ring_sigma", "1.0", "g cm^-2", "gaussian_ring: peak Sigma_d")),
+      when({dust_init("gaussian_ring")}, real("dust.sigma_floor_rel", "1e-30", "",
+                                              "gaussian_ring: Sigma_d / Sigma_g outside "
+                                              "the ring (§6.4; not a floor during "
+                                              "the run: m and phi of a nearly empty cell "
+                                              "are decoded through a floor set by "
+                                              "solver.atol_sigma)",
+                                              0.0, false, 1e-3, false)),
 
       // [transport] spec §6.1, §6.3
       flag("transport.drift", "true", "radial drift (advection by v_r, §6.1)"),
       flag("transport.diffusion", "true",
            "turbulent diffusion of Sigma_d/Sigma_g (§6.1)"),
-      positive("transport.St", "0.03", "",
+      when({is("growth.enabled", {"false"})},
+           positive(
+               "transport.St", "0.03", "",
                "prescribed Stokes number at 1 au with growth off (growth.enabled = true "
-               "ignores it)"),
-      real("transport.St_slope", "0.0", "", "prescribed St ∝ r^St_slope (growth off)",
-           -5.0, false, 5.0, false),
-      choice("transport.advection", "upwind", {"upwind", "van_leer"},
-             "advection scheme of the drift: first-order upwind, or second-order upwind "
-             "with a van Leer-limited reconstruction of r Sigma (MUSCL; widens the "
-             "Jacobian stencil to 4 cells per face)"),
+               "ignores it)")),
+      when({is("growth.enabled", {"false"})},
+           real("transport.St_slope", "0.0", "",
+                "prescribed St ∝ r^St_slope (growth off)", -5.0, false, 5.0, false)),
+      when(
+          {is("transport.drift", {"true"})},
+          choice(
+              "transport.advection", "upwind", {"upwind", "van_leer"},
+              "advection scheme of the drift: first-order upwind, or second-order upwind "
+              "with a van Leer-limited reconstruction of r Sigma (MUSCL; widens the "
+              "Jacobian stencil to 4 cells per face)")),
 
       // [growth] spec §3, §4.1: the mass of the mass-dominating particle (variable Q_m)
       flag("growth.enabled", "false",
            "grow the mass-dominating particle (spec §4.1); off: St is prescribed by "
            "transport.St"),
-      positive("growth.f_grow", "1.0", "",
-               "multiplier of the coagulation rate (spec §4.1; with erosion.model = "
-               "\"balance\" of its similar-size term only)"),
-      real("growth.eps", "0.5", "",
-           "size ratio of the collision partner, St2 = eps St (§3)", 0.0, true, 1.0,
-           true),
-      choice("growth.drag_law", "stokes_re", {"stokes_re", "epstein"},
-             "drag: Epstein joined smoothly to Stokes and Reynolds-dependent drag, or "
-             "Epstein "
-             "only (spec §2)"),
-      positive("growth.vg2_factor", "1.0", "",
+      when({growth_on()},
+           positive("growth.f_grow", "1.0", "",
+                    "multiplier of the coagulation rate (spec §4.1; with erosion.model = "
+                    "\"balance\" of its similar-size term only)")),
+      when({growth_on()}, real("growth.eps", "0.5", "",
+                               "size ratio of the collision partner, St2 = eps St (§3)",
+                               0.0, true, 1.0, true)),
+      when({growth_on()},
+           choice(
+               "growth.drag_law", "stokes_re", {"stokes_re", "epstein"},
+               "drag: Epstein joined smoothly to Stokes and Reynolds-dependent drag, or "
+               "Epstein only (spec §2)")),
+      when({growth_on()},
+           positive(
+               "growth.vg2_factor", "1.0", "",
                "V_g^2 = vg2_factor alpha c_s^2 in the turbulent relative velocity (spec "
-               "§3, item 5: 1, the Ormel & Cuzzi 2007 normalisation; alt. 1.5)"),
-      real("growth.St_max", "1e4", "",
-           "soft cap of St (m stops growing there; planetesimals "
-           "are converted by the planetesimal channels)",
-           1.0, false),
+               "§3, item 5: 1, the Ormel & Cuzzi 2007 normalisation; alt. 1.5)")),
+      when({growth_on()}, real("growth.St_max", "1e4", "",
+                               "soft cap of St (m stops growing there; planetesimals "
+                               "are converted by the planetesimal channels)",
+                               1.0, false)),
 
       // [porosity] spec §4.2-§4.4 (variable Q_phi; off: phi = 1)
-      flag("porosity.enabled", "false", "evolve the filling factor phi (spec §4.3)"),
-      real("porosity.s_hs", "-0.58", "", "hit-and-stick slope d ln phi/d ln m (§4.3)",
-           -1.0, false, 0.0, false),
-      positive("porosity.b", "0.15", "",
-               "compression threshold E_imp = 3 b E_roll (§4.2)"),
-      real("porosity.phi_max", "0.5", "",
-           "largest filling factor compaction raises phi to: the cap of the gas and "
-           "self-gravity floors (§4.3-§4.4); monomers start at phi = 1, which "
-           "hit-and-stick lowers, so phi <= 1 is what holds throughout",
-           0.0, true, 1.0, false),
-      flag("porosity.gas_compaction", "true", "static compression by gas drag (§4.3)"),
-      flag("porosity.self_gravity", "true", "static compression by self-gravity (§4.3)"),
+      when({growth_on()}, flag("porosity.enabled", "false",
+                               "evolve the filling factor phi (spec §4.3)")),
+      when({growth_on(), is("porosity.enabled", {"true"})},
+           real("porosity.s_hs", "-0.58", "",
+                "hit-and-stick slope d ln phi/d ln m (§4.3)", -1.0, false, 0.0, false)),
+      when({growth_on(), is("porosity.enabled", {"true"})},
+           positive("porosity.b", "0.15", "",
+                    "compression threshold E_imp = 3 b E_roll (§4.2)")),
+      when({growth_on(), is("porosity.enabled", {"true"})},
+           real("porosity.phi_max", "0.5", "",
+                "largest filling factor compaction raises phi to: the cap of the gas and "
+                "self-gravity floors (§4.3-§4.4); monomers start at phi = 1, which "
+                "hit-and-stick lowers, so phi <= 1 is what holds throughout",
+                0.0, true, 1.0, false)),
+      when({growth_on(), is("porosity.enabled", {"true"})},
+           flag("porosity.gas_compaction", "true",
+                "static compression by gas drag (§4.3)")),
+      when({growth_on(), is("porosity.enabled", {"true"})},
+           flag("porosity.self_gravity", "true",
+                "static compression by self-gravity (§4.3)")),
 
       // [erosion] spec §5.1-§5.2
-      choice("erosion.model", "none", {"none", "halt", "balance"},
-             "erosion by small projectiles: halt (E1) or rate balance (E2)"),
-      positive("erosion.v_eros_m_s", "40.0", "m s^-1", "erosion threshold speed (§5.1)"),
-      positive("erosion.width", "0.01", "",
-               "width w of the smooth erosion switch (spec §5.2 says 0.05: with fast "
-               "growth that lets particles overshoot the stall by 20-40% in St)"),
-      real("erosion.f_s", "0.1", "", "balance: mass fraction of small projectiles (§5.2)",
-           0.0, false, 1.0, true),
-      real("erosion.eps_eros", "1.0", "",
-           "balance: mass eroded per projectile mass (§5.2)", 0.0, false),
-      real("erosion.St_small", "0.0", "",
-           "Stokes number of the small projectiles; 0 = a monomer (§3)", 0.0, false),
+      when({growth_on()},
+           choice("erosion.model", "none", {"none", "halt", "balance"},
+                  "erosion by small projectiles: halt (E1) or rate balance (E2)")),
+      when({growth_on(), erosion({"halt", "balance"})},
+           positive("erosion.v_eros_m_s", "40.0", "m s^-1",
+                    "erosion threshold speed (§5.1)")),
+      when(
+          {growth_on(), erosion({"halt", "balance"})},
+          positive("erosion.width", "0.01", "",
+                   "width w of the smooth erosion switch (spec §5.2 says 0.05: with fast "
+                   "growth that lets particles overshoot the stall by 20-40% in St)")),
+      when({growth_on(), erosion({"balance"})},
+           real("erosion.f_s", "0.1", "",
+                "balance: mass fraction of small projectiles (§5.2)", 0.0, false, 1.0,
+                true)),
+      when({growth_on(), erosion({"balance"})},
+           real("erosion.eps_eros", "1.0", "",
+                "balance: mass eroded per projectile mass (§5.2)", 0.0, false)),
+      when(
+          {growth_on(), erosion({"halt", "balance"})},
+          real("erosion.St_small", "0.0", "",
+               "Stokes number of the small projectiles; 0 = a monomer (§3)", 0.0, false)),
 
       // [fragmentation], [bouncing] spec §5.3
-      flag("fragmentation.enabled", "false", "similar-size fragmentation (§5.3)"),
-      positive("fragmentation.v_frag_ice_m_s", "60.0", "m s^-1",
-               "ice fragmentation speed"),
-      positive("fragmentation.v_frag_sil_m_s", "5.0", "m s^-1",
-               "silicate fragmentation speed"),
-      flag("bouncing.enabled", "false",
-           "no sticking of compact aggregates (§5.3 as written: at every speed and "
-           "mass, not a usable bouncing barrier; see README)"),
-      real("bouncing.phi_bounce", "0.3", "",
-           "filling factor above which aggregates bounce", 0.0, true, 1.0, false),
+      when({growth_on()},
+           flag("fragmentation.enabled", "false", "similar-size fragmentation (§5.3)")),
+      when({growth_on(), is("fragmentation.enabled", {"true"})},
+           positive("fragmentation.v_frag_ice_m_s", "60.0", "m s^-1",
+                    "ice fragmentation speed")),
+      when({growth_on(), is("fragmentation.enabled", {"true"})},
+           positive("fragmentation.v_frag_sil_m_s", "5.0", "m s^-1",
+                    "silicate fragmentation speed")),
+      when({growth_on()},
+           flag("bouncing.enabled", "false",
+                "no sticking of compact aggregates (§5.3 as written: at every speed and "
+                "mass, not a usable bouncing barrier; see README)")),
+      when({growth_on(), is("bouncing.enabled", {"true"})},
+           real("bouncing.phi_bounce", "0.3", "",
+                "filling factor above which aggregates bounce", 0.0, true, 1.0, false)),
 
       // [snowline] spec §1.7, §6.3
       flag("snowline.enabled", "true",
@@ -239,33 +308,45 @@ std::vector<KeySpec> make_keys() {
            false, 1.0, true),
 
       // [material] spec §0: monomer constants per species
-      positive("material.a0_um", "0.1", "micron", "monomer radius (both species)"),
-      positive("material.xi_crit_angstrom", "8.0", "angstrom",
-               "critical rolling displacement"),
-      positive("material.z0_nm", "0.4", "nm",
-               "equilibrium atomic spacing (Tabor parameter)"),
-      positive("material.rolling_radius_factor", "1.0", "",
-               "R_r = factor * a0 in E_roll = 6 pi^2 gamma R_r xi_crit (§0: 1 or 0.5)"),
-      positive("material.ice_rho0", "1.4", "g cm^-3", "ice monomer density"),
-      positive("material.ice_gamma", "100.0", "erg cm^-2",
-               "ice surface energy per surface gamma (E_roll; JKR uses w = 2 gamma)"),
-      positive("material.ice_youngs_gpa", "7.0", "GPa", "ice Young's modulus"),
-      real("material.ice_poisson", "0.25", "", "ice Poisson ratio", 0.0, false, 0.5,
-           true),
+      when({growth_on()},
+           positive("material.a0_um", "0.1", "micron", "monomer radius (both species)")),
+      when({growth_on()}, positive("material.xi_crit_angstrom", "8.0", "angstrom",
+                                   "critical rolling displacement")),
+      when({growth_on()}, positive("material.z0_nm", "0.4", "nm",
+                                   "equilibrium atomic spacing (Tabor parameter)")),
+      when({growth_on()},
+           positive(
+               "material.rolling_radius_factor", "1.0", "",
+               "R_r = factor * a0 in E_roll = 6 pi^2 gamma R_r xi_crit (§0: 1 or 0.5)")),
+      when({growth_on()},
+           positive("material.ice_rho0", "1.4", "g cm^-3", "ice monomer density")),
+      when({growth_on()},
+           positive(
+               "material.ice_gamma", "100.0", "erg cm^-2",
+               "ice surface energy per surface gamma (E_roll; JKR uses w = 2 gamma)")),
+      when({growth_on()},
+           positive("material.ice_youngs_gpa", "7.0", "GPa", "ice Young's modulus")),
+      when({growth_on()}, real("material.ice_poisson", "0.25", "", "ice Poisson ratio",
+                               0.0, false, 0.5, true)),
       positive("material.sil_rho0", "3.0", "g cm^-3", "silicate monomer density"),
-      positive("material.sil_gamma", "25.0", "erg cm^-2",
-               "silicate surface energy per surface gamma (§0)"),
-      positive("material.sil_youngs_gpa", "54.0", "GPa", "silicate Young's modulus"),
-      real("material.sil_poisson", "0.17", "", "silicate Poisson ratio", 0.0, false, 0.5,
-           true),
+      when({growth_on()}, positive("material.sil_gamma", "25.0", "erg cm^-2",
+                                   "silicate surface energy per surface gamma (§0)")),
+      when({growth_on()}, positive("material.sil_youngs_gpa", "54.0", "GPa",
+                                   "silicate Young's modulus")),
+      when({growth_on()}, real("material.sil_poisson", "0.17", "",
+                               "silicate Poisson ratio", 0.0, false, 0.5, true)),
 
       // [planetesimals] spec §7 (needs growth.enabled; each channel owns a Sigma_pl)
-      flag("planetesimals.coagulation", "false",
-           "direct coagulation: dust with St >= St_pl that still grows becomes "
-           "planetesimals (spec §7.1)"),
-      positive("planetesimals.St_pl", "10.0", "", "St threshold of direct coagulation"),
-      positive("planetesimals.tau_pl_omega", "10.0", "",
-               "conversion time of direct coagulation in units of 1/Omega_K"),
+      when({growth_on()},
+           flag("planetesimals.coagulation", "false",
+                "direct coagulation: dust with St >= St_pl that still grows becomes "
+                "planetesimals (spec §7.1)")),
+      when({growth_on(), is("planetesimals.coagulation", {"true"})},
+           positive("planetesimals.St_pl", "10.0", "",
+                    "St threshold of direct coagulation")),
+      when({growth_on(), is("planetesimals.coagulation", {"true"})},
+           positive("planetesimals.tau_pl_omega", "10.0", "",
+                    "conversion time of direct coagulation in units of 1/Omega_K")),
       choice(
           "planetesimals.si", "none", {"none", "d16", "s18", "zcrit"},
           "streaming instability: d16 = Drazkowska et al. 2016 (zeta Sigma_d Omega for "
@@ -273,14 +354,19 @@ std::vector<KeySpec> make_keys() {
           "when the midplane rho_d/rho_g >= eps_crit; zcrit = zeta Sigma_d Omega for "
           "St >= 0.01 when Sigma_d/Sigma_g >= Z_crit(St) of Lim et al. 2025 (revised "
           "Li & Youdin 2021 fit, Pi = 0.05) (spec §7.2)"),
-      positive("planetesimals.zeta_d16", "0.01", "", "d16 efficiency"),
-      positive("planetesimals.zeta_s18", "0.1", "", "s18 efficiency"),
-      positive("planetesimals.zeta_zcrit", "0.01", "", "zcrit efficiency"),
-      positive("planetesimals.St_si_min", "0.01", "",
-               "d16 and zcrit: smallest St that takes part"),
-      positive("planetesimals.eps_crit", "1.0", "",
-               "d16 and s18: midplane rho_d/rho_g that triggers SI (zcrit compares "
-               "Sigma_d/Sigma_g with Z_crit(St) instead)"),
+      when({si({"d16"})},
+           positive("planetesimals.zeta_d16", "0.01", "", "d16 efficiency")),
+      when({si({"s18"})},
+           positive("planetesimals.zeta_s18", "0.1", "", "s18 efficiency")),
+      when({si({"zcrit"})},
+           positive("planetesimals.zeta_zcrit", "0.01", "", "zcrit efficiency")),
+      when({si({"d16", "zcrit"})},
+           positive("planetesimals.St_si_min", "0.01", "",
+                    "d16 and zcrit: smallest St that takes part")),
+      when({si({"d16", "s18"})},
+           positive("planetesimals.eps_crit", "1.0", "",
+                    "d16 and s18: midplane rho_d/rho_g that triggers SI (zcrit compares "
+                    "Sigma_d/Sigma_g with Z_crit(St) instead)")),
 
       // [pebbles] spec §8
       real_list("pebbles.radii_au", "au",
@@ -335,10 +421,13 @@ std::vector<KeySpec> make_keys() {
       // 1e12 yr: far beyond any disk's life, and t_end in seconds stays finite (1e308 yr
       // was inf s: the run wrote its output and failed in CVODE, exit 3)
       real("output.t_end_yr", "1e6", "yr", "end of the run", 1e-6, false, 1e12, false),
-      real("output.t_first_yr", "100.0", "yr",
-           "first snapshot after t = 0 (log-spaced snapshots from here to t_end)", 1e-6),
-      integer("output.n_snapshots", "41",
-              "log-spaced snapshots after t = 0 (t_first..t_end)", 1, 1e6),
+      when({is("output.times_yr", {"[]"})},
+           real("output.t_first_yr", "100.0", "yr",
+                "first snapshot after t = 0 (log-spaced snapshots from here to t_end)",
+                1e-6)),
+      when({is("output.times_yr", {"[]"})},
+           integer("output.n_snapshots", "41",
+                   "log-spaced snapshots after t = 0 (t_first..t_end)", 1, 1e6)),
       real_list("output.times_yr", "yr",
                 "explicit snapshot times, each <= t_end_yr, strictly increasing, at "
                 "least 1e-9 (relative) apart; replaces the log spacing when not empty",
@@ -351,12 +440,15 @@ std::vector<KeySpec> make_keys() {
       choice("observe.outer_species", "mix", {"mix", "ice", "sil"},
              "solids outside the snow line (inside: sil): mix = water ice + silicate "
              "with the ice mass fraction snowline.f_ice, ice = pure water ice"),
-      choice("observe.mix_rule", "bruggeman", {"bruggeman", "maxwell_garnett"},
-             "effective-medium rule of the mix (maxwell_garnett: silicate inclusions "
-             "in an ice matrix)"),
-      positive("observe.water_ice_rho", "0.92", "g cm^-3",
-               "density of water ice, for the volume fractions of the mix (with "
-               "material.sil_rho0)"),
+      when(
+          {is("observe.outer_species", {toml_str("mix")})},
+          choice("observe.mix_rule", "bruggeman", {"bruggeman", "maxwell_garnett"},
+                 "effective-medium rule of the mix (maxwell_garnett: silicate inclusions "
+                 "in an ice matrix)")),
+      when({is("observe.outer_species", {toml_str("mix"), toml_str("ice")})},
+           positive("observe.water_ice_rho", "0.92", "g cm^-3",
+                    "density of water ice, for the volume fractions of the mix (with "
+                    "material.sil_rho0)")),
       real_table("observe.ice_lambda_mm",
                  "[0.3, 0.5, 1.3, 5.0, 19.0, 39.0, 61.0, 86.0, 110.0]", "mm",
                  "water ice: wavelengths of the table (Warren & Brandt 2008, JGR 113, "

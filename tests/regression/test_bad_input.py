@@ -160,6 +160,25 @@ def main():
                         "-o", "/proc/panoptic/x.h5"], capture_output=True, text=True)
     print(f"[unwritable output] exit {p.returncode}: {p.stderr.strip()}")
     c.check(p.returncode == 4, "unwritable output: exit code 4")
+    # a key set but not read under the scene's switches (an LBP radius on a power-law
+    # disk was silently ignored): one warning naming the key, where it was set, the
+    # switch and the fix; check and run still exit 0
+    fid = os.path.join(REPO, "params/fiducial.toml")
+    for cmd in (["check", fid], ["run", fid, "-o", os.path.join(args.workdir, "warn.h5"),
+                                 "--overwrite", "--set", "output.t_end_yr=1e-3",
+                                 "--set", "output.t_first_yr=1e-4",
+                                 "--set", "grid.n_cells=16"]):
+        p = subprocess.run([args.exe] + cmd + ["--set", "disk.r_c_au=30"],
+                           capture_output=True, text=True)
+        warnings = [l for l in p.stderr.splitlines() if "warning" in l]
+        print(f"[unused key, {cmd[0]}] exit {p.returncode}: {warnings}")
+        c.check(p.returncode == 0 and len(warnings) == 1 and warnings[0].startswith(
+            "panoptic: warning: disk.r_c_au = 30") and all(n in warnings[0] for n in [
+                "(--set)", 'disk.model = "powerlaw"', 'set disk.model = "lbp"']),
+                f"{cmd[0]}: one warning for the unused disk.r_c_au, exit 0")
+    p = subprocess.run([args.exe, "check", fid], capture_output=True, text=True)
+    c.check(p.returncode == 0 and "warning" not in p.stderr,
+            f"check of the fiducial scene: no warning ({p.stderr.strip()!r})")
     for flag in ["--help", "--version"]:
         p = subprocess.run([args.exe, flag], capture_output=True, text=True)
         c.check(p.returncode == 0 and p.stdout.strip() != "", f"{flag}: exit 0 with text")

@@ -114,7 +114,10 @@ def one_line(s, limit=160):
 
 def judge_error(code, stderr, keys):
     """(verdict, reason) of a run that exited with `code`."""
-    msg = stderr.strip()
+    # without the warnings about keys the scene sets but does not use: a key named there
+    # must not make an error that names none look clear
+    msg = "\n".join(line for line in stderr.strip().splitlines()
+                    if not line.startswith("panoptic: warning: "))
     # the error line (stderr may start with a note, e.g. where the last snapshot is kept)
     first = next((line.removeprefix("panoptic: error: ") for line in msg.splitlines()
                   if line.startswith("panoptic: error: ")), msg.splitlines()[0] if msg else "")

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdint>
@@ -11,7 +12,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -700,6 +703,139 @@ TEST(SceneChecks, OpticalTablesAreCheckedBeforeTheRun) {
                {"scene.toml:2:1: observe.sil_lambda_mm = [2.0, 1.0]",
                 "wavelengths must increase strictly"});
   validate_scene(load(""));
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys set but not used under the scene's switches (KeySpec::used_when)
+
+std::vector<std::string> unused(std::string_view text, const Overrides& overrides = {}) {
+  return unused_key_warnings(load(text, overrides));
+}
+
+// The same for the defaults with `overrides` (canonical literals: parsed in-process).
+std::vector<std::string> unused_with(const Overrides& overrides) {
+  return unused_key_warnings(apply_trusted_overrides(load(""), overrides));
+}
+
+TEST(UnusedKeys, LbpKeysOfAPowerLawDisk) {
+  // the disk keys of an LBP disk without disk.model = "lbp": the power-law disk was run
+  const auto w = unused("[disk]\nm_disk_msun = 0.1\nr_c_au = 30\n");
+  ASSERT_EQ(w.size(), 2u);
+  expect_parts(w[0], {"panoptic: warning: disk.m_disk_msun = 0.1 (scene.toml:2:1)",
+                      "is not used: disk.model = \"powerlaw\"",
+                      "set disk.model = \"lbp\" to use it, or remove the key"});
+  expect_parts(w[1],
+               {"disk.r_c_au = 30", "(scene.toml:3:1)", "set disk.model = \"lbp\""});
+  // from --set: named as such
+  const auto s = unused("", {"disk.r_c_au=30"});
+  ASSERT_EQ(s.size(), 1u);
+  expect_parts(s[0], {"disk.r_c_au = 30", "(--set)", "disk.model = \"powerlaw\""});
+}
+
+TEST(UnusedKeys, ErosionKeyOfAnotherModeOrWithGrowthOff) {
+  const auto w =
+      unused("[growth]\nenabled = true\n[erosion]\nmodel = \"halt\"\nf_s = 0.2\n");
+  ASSERT_EQ(w.size(), 1u);
+  expect_parts(w[0], {"erosion.f_s = 0.2 (scene.toml:5:1)",
+                      "is not used: erosion.model = \"halt\"",
+                      "set erosion.model = \"balance\" to use it"});
+  // with growth off, erosion as a whole is unused: every failing switch is named
+  const auto off = unused("[erosion]\nmodel = \"halt\"\nv_eros_m_s = 20\n");
+  ASSERT_EQ(off.size(), 2u);
+  expect_parts(off[0], {"erosion.model = \"halt\"", "is not used: growth.enabled = false",
+                        "set growth.enabled = true"});
+  expect_parts(off[1], {"erosion.v_eros_m_s = 20", "is not used: growth.enabled = false",
+                        "set growth.enabled = true to use it"});
+  const auto none = unused("[growth]\nenabled = true\n[erosion]\nv_eros_m_s = 20\n");
+  ASSERT_EQ(none.size(), 1u);
+  expect_parts(none[0], {"erosion.model = \"none\"",
+                         "set erosion.model = \"halt\" or \"balance\" to use it"});
+}
+
+TEST(UnusedKeys, RingKeysWithoutTheRing) {
+  const auto w = unused("[dust]\nring_r_au = 20\n");
+  ASSERT_EQ(w.size(), 1u);
+  expect_parts(w[0], {"dust.ring_r_au = 20", "is not used: dust.init = \"dust_to_gas\"",
+                      "set dust.init = \"gaussian_ring\""});
+  // and the other way round: the dust-to-gas ratio of a ring scene
+  const auto r = unused("[dust]\ninit = \"gaussian_ring\"\ndust_to_gas = 0.02\n");
+  ASSERT_EQ(r.size(), 1u);
+  expect_parts(r[0], {"dust.dust_to_gas = 0.02", "dust.init = \"gaussian_ring\""});
+}
+
+TEST(UnusedKeys, KeysThatAreUsedGiveNoWarning) {
+  EXPECT_TRUE(
+      unused("[disk]\nmodel = \"lbp\"\nr_c_au = 30\nm_disk_msun = 0.1\n").empty());
+  EXPECT_TRUE(unused("[growth]\nenabled = true\n[erosion]\nmodel = \"balance\"\n"
+                     "f_s = 0.2\nv_eros_m_s = 20\n")
+                  .empty());
+  EXPECT_TRUE(unused("[dust]\ninit = \"gaussian_ring\"\nring_r_au = 20\n").empty());
+  EXPECT_TRUE(unused("", {"disk.model=lbp", "disk.r_c_au=30"}).empty());
+  // keys without a condition
+  EXPECT_TRUE(unused("[grid]\nn_cells = 100\n[disk]\nalpha = 1e-4\n").empty());
+}
+
+TEST(UnusedKeys, DefaultsAndSwitchesSetOffGiveNoWarning) {
+  // every key at its default, none set by the user: nothing to report
+  EXPECT_TRUE(unused("").empty());
+  EXPECT_TRUE(unused("[disk]\nmodel = \"lbp\"\n").empty());  // sigma_1au, p: defaults
+  // a switch set to its default (off) turns nothing on ...
+  EXPECT_TRUE(
+      unused("[fragmentation]\nenabled = false\n[erosion]\nmodel = \"none\"\n").empty());
+  // ... but set on without what it needs it is reported
+  const auto w = unused("[fragmentation]\nenabled = true\n");
+  ASSERT_EQ(w.size(), 1u);
+  expect_parts(w[0], {"fragmentation.enabled = true", "growth.enabled = false"});
+}
+
+TEST(UnusedKeys, EveryConditionOfTheSchemaCanHoldAndFail) {
+  // Each key with its conditions met (switches at their first listed value) is used, and
+  // with one switch at another allowed value it is not: catches a condition naming a
+  // key that does not exist or a value written otherwise than the canonical literal.
+  std::map<std::string, const KeySpec*> specs;
+  std::set<std::string> switches;
+  for (const KeySpec& spec : scene_keys()) {
+    specs[spec.key] = &spec;
+    for (const UsedWhen& c : spec.used_when) switches.insert(c.key);
+  }
+  size_t conditions = 0;
+  for (const KeySpec& spec : scene_keys()) {
+    Overrides met;
+    for (const UsedWhen& c : spec.used_when) {
+      ASSERT_TRUE(specs.count(c.key)) << spec.key << ": condition on unknown " << c.key;
+      ASSERT_FALSE(c.values.empty()) << spec.key;
+      met.push_back(c.key + "=" + c.values.front());
+    }
+    if (spec.used_when.empty()) continue;
+    Overrides with_key = met;
+    with_key.push_back(spec.key + "=" + spec.default_toml);
+    for (const std::string& w : unused_with(with_key))
+      EXPECT_EQ(w.find(" " + spec.key + " = "), std::string::npos)
+          << "conditions met, still reported: " << w;
+    for (size_t k = 0; k < spec.used_when.size(); ++k) {
+      const UsedWhen& c = spec.used_when[k];
+      const KeySpec& sw = *specs[c.key];
+      std::vector<std::string> others;  // values of the switch that fail the condition
+      if (sw.type == KeyType::kBool) others = {"true", "false"};
+      if (sw.type == KeyType::kRealList) others = {"[1.0]"};
+      for (const std::string& choice : sw.choices) others.push_back("\"" + choice + "\"");
+      for (const std::string& other : others) {
+        if (std::find(c.values.begin(), c.values.end(), other) != c.values.end())
+          continue;
+        Overrides failed = with_key;
+        failed[k] = c.key + "=" + other;
+        bool reported = false;
+        for (const std::string& w : unused_with(failed))
+          reported |= w.find(" " + spec.key + " = ") != std::string::npos &&
+                      w.find(c.key + " = " + other) != std::string::npos;
+        // a switch set to its default is exempt (it turns nothing on)
+        EXPECT_TRUE(reported || switches.count(spec.key))
+            << spec.key << " with " << c.key << " = " << other;
+        ++conditions;
+      }
+    }
+  }
+  EXPECT_GT(conditions, 50u);
 }
 
 }  // namespace
