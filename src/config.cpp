@@ -23,6 +23,13 @@
 #include "src/toml_literal.hpp"
 
 namespace panoptic {
+std::string trim_blanks(std::string_view s) {
+  const size_t b = s.find_first_not_of(" \t");
+  if (b == std::string_view::npos) return "";
+  const size_t e = s.find_last_not_of(" \t");
+  return std::string(s.substr(b, e - b + 1));
+}
+
 namespace {
 
 // A scene is a page of text; anything this large is the wrong file, and refusing it
@@ -535,8 +542,8 @@ class Loader {
                    "grid.n_cells=500");
       return;
     }
-    const std::string key = trim(item.substr(0, eq));
-    const std::string raw = trim(item.substr(eq + 1));
+    const std::string key = trim_blanks(item.substr(0, eq));
+    const std::string raw = trim_blanks(item.substr(eq + 1));
     const std::string shown = SourceText::tidy(raw);  // long values are cut
     if (key.empty()) {
       add_override("--set " + toml_string(item) +
@@ -624,13 +631,6 @@ class Loader {
     if (lit.doc.size() != 1 || !t || t->size() != 1 || !t->get(lit.leaf))
       return std::nullopt;
     return lit;
-  }
-
-  static std::string trim(std::string_view s) {
-    const size_t b = s.find_first_not_of(" \t");
-    if (b == std::string_view::npos) return "";
-    const size_t e = s.find_last_not_of(" \t");
-    return std::string(s.substr(b, e - b + 1));
   }
 
   static std::string unknown_key_fix(const std::string& key) {

@@ -104,6 +104,10 @@ Config load_scene_text(std::string_view text, const std::string& name,
 Config apply_trusted_overrides(const Config& base,
                                std::span<const std::string> overrides);
 
+//! `s` without the spaces and tabs at either end: how a --set item's key and value are
+//! read (panoptic scan compares its scan.set keys the same way).
+std::string trim_blanks(std::string_view s);
+
 //! One line per key the scene file or --set set that a run of this scene does not read
 //! (its KeySpec::used_when fails: disk.r_c_au without disk.model = "lbp"), naming the
 //! key, where it was set, the switches that leave it unused and the fix. A switch set to

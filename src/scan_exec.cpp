@@ -91,13 +91,13 @@ std::optional<std::string> error_line(const fs::path& file) {
   return found;
 }
 
+}  // namespace
+
 std::string hostname() {
   char buf[256] = {};
   if (gethostname(buf, sizeof buf - 1) != 0) return "";
   return buf;
 }
-
-}  // namespace
 
 std::string ScanTask::serialize() const {
   // NUL-separated fields: id, name, h5, log, err, status, config_toml, then argv
@@ -221,19 +221,16 @@ RunRecord finish_task(const ScanTask& task, int wait_status, double wall_s,
 
 bool can_continue(const ScanTask& task) {
   std::error_code ec;
-  const fs::path chk = checkpoint_path(task.h5);
   if (!fs::exists(task.h5, ec)) return false;
   h5::quiet_errors();
-  for (const fs::path& file : {chk, previous_checkpoint_path(chk)}) {
-    if (!fs::exists(file, ec)) continue;
-    try {
-      h5::Handle f = h5::open_file(file.string(), false);
-      return h5::get_attr_string(f.get(), "config_toml") == task.config_toml;
-    } catch (const Error&) {
-      // unreadable: panoptic run --restart falls back on the previous checkpoint
-    }
+  try {
+    // the checkpoint `panoptic run --restart` would continue (the previous one when the
+    // last is missing, damaged or incomplete), read as it reads it
+    return load_restart_point(checkpoint_path(task.h5)).chk.config_toml ==
+           task.config_toml;
+  } catch (const Error&) {
+    return false;  // neither can be used
   }
-  return false;
 }
 
 std::optional<RunRecord> read_record(const fs::path& status) {

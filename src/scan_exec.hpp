@@ -62,6 +62,10 @@ RunRecord finish_task(const ScanTask& task, int wait_status, double wall_s,
 //! starts again from t = 0, as a new scan of its manifest would run it.
 bool can_continue(const ScanTask& task);
 
+//! This machine's host name ("" when it cannot be read): a run's worker, and part of a
+//! temporary file's name that processes on other nodes must not share.
+std::string hostname();
+
 //! Reads a status file; nullopt when absent or unreadable.
 std::optional<RunRecord> read_record(const std::filesystem::path& status);
 

@@ -244,11 +244,6 @@ std::string run_name(long id, long n) {
   return buf;
 }
 
-std::string trimmed(const std::string& s) {
-  const auto a = s.find_first_not_of(" \t");
-  return a == std::string::npos ? "" : s.substr(a, s.find_last_not_of(" \t") - a + 1);
-}
-
 std::string hex64(std::uint64_t x) {
   char buf[24];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(x));
@@ -428,7 +423,7 @@ Manifest expand_scan_text(std::string_view text, const std::string& name,
         if (b.key == a.key)
           where.fail(*arr->get(k), "axis " + a.key + " appears twice; merge the two");
       for (const std::string& f : m.fixed)
-        if (trimmed(f.substr(0, f.find('='))) == a.key)  // as --set reads the key
+        if (trim_blanks(f.substr(0, f.find('='))) == a.key)  // as --set reads the key
           where.fail(*arr->get(k),
                      "axis " + a.key + " is also fixed in scan.set; remove one of them");
       m.axes.push_back(std::move(a));

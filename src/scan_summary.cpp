@@ -135,10 +135,8 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
   const fs::path h5path = dir / "summary.h5";
   // host and PID: processes of one scan on different nodes of a shared file system may
   // have the same PID (HDF5 writes the file itself, so mkstemp's name cannot be used)
-  char host[256] = {};
-  if (gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
   const fs::path tmp =
-      dir / ("summary.h5.tmp." + std::string(host) + "." + std::to_string(getpid()));
+      dir / ("summary.h5.tmp." + hostname() + "." + std::to_string(getpid()));
   // a failed write (disk full, quota) leaves the old summary and no temporary file
   // (after the rename there is none to remove)
   struct RemoveTemporary {

@@ -4,6 +4,7 @@
 //
 // NEW_PROCESS: add the keys of a new process here, in a table of its own.
 #include "src/config.hpp"
+#include "src/toml_literal.hpp"
 
 namespace panoptic {
 namespace {
@@ -95,17 +96,19 @@ KeySpec real_table(std::string key, std::string def, std::string unit, std::stri
 UsedWhen is(std::string key, std::vector<std::string> values) {
   return UsedWhen{std::move(key), std::move(values)};
 }
-std::string toml_str(const std::string& s) { return "\"" + s + "\""; }
+//! A string switch (a choice) holding one of `names`.
+UsedWhen one_of(std::string key, std::vector<std::string> names) {
+  for (std::string& n : names) n = toml_string(n);  // as Config writes the value
+  return is(std::move(key), std::move(names));
+}
 UsedWhen growth_on() { return is("growth.enabled", {"true"}); }
-UsedWhen disk_model(const std::string& m) { return is("disk.model", {toml_str(m)}); }
-UsedWhen dust_init(const std::string& i) { return is("dust.init", {toml_str(i)}); }
+UsedWhen disk_model(const std::string& m) { return one_of("disk.model", {m}); }
+UsedWhen dust_init(const std::string& i) { return one_of("dust.init", {i}); }
 UsedWhen erosion(std::vector<std::string> models) {
-  for (std::string& m : models) m = toml_str(m);
-  return is("erosion.model", std::move(models));
+  return one_of("erosion.model", std::move(models));
 }
 UsedWhen si(std::vector<std::string> models) {
-  for (std::string& m : models) m = toml_str(m);
-  return is("planetesimals.si", std::move(models));
+  return one_of("planetesimals.si", std::move(models));
 }
 
 KeySpec when(std::vector<UsedWhen> conditions, KeySpec k) {
@@ -441,11 +444,11 @@ std::vector<KeySpec> make_keys() {
              "solids outside the snow line (inside: sil): mix = water ice + silicate "
              "with the ice mass fraction snowline.f_ice, ice = pure water ice"),
       when(
-          {is("observe.outer_species", {toml_str("mix")})},
+          {one_of("observe.outer_species", {"mix"})},
           choice("observe.mix_rule", "bruggeman", {"bruggeman", "maxwell_garnett"},
                  "effective-medium rule of the mix (maxwell_garnett: silicate inclusions "
                  "in an ice matrix)")),
-      when({is("observe.outer_species", {toml_str("mix"), toml_str("ice")})},
+      when({one_of("observe.outer_species", {"mix", "ice"})},
            positive("observe.water_ice_rho", "0.92", "g cm^-3",
                     "density of water ice, for the volume fractions of the mix (with "
                     "material.sil_rho0)")),
