@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
 #include "physics/mie.hpp"
@@ -326,11 +327,12 @@ int observe(const ObserveArgs& a) {
                       " arcsec); the limit is " + std::to_string(kMaxImageSide) +
                       ": use a larger beam or a larger --distance-pc");
   grid.n = static_cast<int>(n_side);
-  // Nearly edge-on the projected disk is thinner than the pixels that sample it: the
-  // image then misses it at some position angles (flux exactly 0 at i = 89.999999 deg,
-  // PA 30). Require the projected minor axis to span a few pixels.
-  // (Only where the inclination thins it: a disk smaller than the beam's pixels is
-  // observed face-on or inclined alike.)
+  // Nearly edge-on the projected disk is thinner than a pixel: its flux is still exact
+  // (DiskProjector), but neither the image nor the deprojected profile then resolves
+  // anything across the minor axis (with point samples the image missed the disk
+  // altogether, flux 0 at i = 89.999999 deg, PA 30). Require the projected minor axis
+  // to span a few pixels. (Only where the inclination thins it: a disk smaller than the
+  // beam's pixels is observed face-on or inclined alike, as a point source.)
   const double major_px = 2.0 * r_out_arcsec / grid.pixel, minor_px = major_px * mu;
   if (minor_px < std::min(kMinMinorAxisPixels, 0.5 * major_px))
     throw ConfigError("--incl-deg " + num(a.incl_deg) +
@@ -342,7 +344,7 @@ int observe(const ObserveArgs& a) {
                       " to sample it; use a smaller inclination or a smaller beam");
   std::vector<double> edges_arcsec(n + 1);
   for (std::size_t i = 0; i <= n; ++i) edges_arcsec[i] = s.r_f_au[i] / a.distance_pc;
-  const DiskProjector projector(grid, orient, edges_arcsec, kSubsamples);
+  const DiskProjector projector(grid, orient, edges_arcsec);
   BeamConvolver convolver(grid.n, grid.pixel, beam);  // plans made once, reused below
   const std::size_t npix = static_cast<std::size_t>(grid.n) * grid.n;
   const double dr = grid.pixel;
@@ -425,6 +427,16 @@ int observe(const ObserveArgs& a) {
                           "): the options are outside what the model can image; bring "
                           "--beam-arcsec, --a-cm and --distance-pc nearer to the disk's "
                           "scales");
+
+  // The projection conserves each annulus's flux (DiskProjector): the image's flux is
+  // the annuli's to round-off at any pixel size. Checked before anything is written.
+  for (std::size_t l = 0; l < nl; ++l)
+    if (!(std::abs(flux_model[l] - flux_annuli[l]) <=
+          kFluxRoundOff * std::abs(flux_annuli[l])))
+      throw std::logic_error("observe: at " + num(a.lambda_mm[l]) +
+                             " mm the image's flux " + num(flux_model[l]) +
+                             " Jy differs from the annuli's " + num(flux_annuli[l]) +
+                             " Jy beyond round-off");
 
   // 6 output: written to <out>.tmp, renamed when whole
   if (out_path.has_parent_path()) fs::create_directories(out_path.parent_path(), ec);
@@ -570,14 +582,6 @@ int observe(const ObserveArgs& a) {
         "tau %.3g\n",
         a.lambda_mm[l], flux_model[l], flux_conv[l], flux_annuli[l],
         *std::max_element(tau.begin() + l * n, tau.begin() + (l + 1) * n));
-    if (std::abs(flux_model[l] / flux_annuli[l] - 1.0) > kFluxSamplingTolerance)
-      std::fprintf(stderr,
-                   "panoptic: warning: at %g mm the image's flux is %.1f %% off the flux "
-                   "over the annuli: its pixels (%.4g arcsec) undersample the disk's "
-                   "bright rings; a smaller beam samples them finer (README, Synthetic "
-                   "observations)\n",
-                   a.lambda_mm[l], 100.0 * (flux_model[l] / flux_annuli[l] - 1.0),
-                   grid.pixel);
   }
   for (std::size_t p = 0; p < np; ++p)
     std::printf("  alpha(%g-%g mm) of the total flux: %.4g\n", pairs[2 * p],

@@ -41,8 +41,6 @@ double slab_intensity_jy_arcsec2(double nu_hz, double T, double tau, double mu);
 
 //! Pixels per FWHM of the beam's minor axis (image pixel = bmin / this).
 inline constexpr int kPixelsPerBeamMinor = 5;
-//! Sub-samples per pixel side when the disk is projected onto the pixels.
-inline constexpr int kSubsamples = 5;
 //! Field margin beyond the disk's outer edge, in beam major-axis FWHM: 4 FWHM = 9.4
 //! sigma, so the beam spills < 1e-19 of the flux out of the field.
 inline constexpr double kFieldMarginBeams = 4.0;
@@ -54,7 +52,8 @@ inline constexpr int kMaxImageSide = 4097;
 //! and the default beam).
 inline constexpr double kMinMinorAxisPixels = 3.0;
 //! Largest relative difference between the image-summed flux and the flux over the
-//! annuli before observe warns that its pixels undersample the disk.
-inline constexpr double kFluxSamplingTolerance = 0.05;
+//! annuli: the projection makes them equal to round-off (DiskProjector), so a larger
+//! one is a bug, reported as an internal error before anything is written.
+inline constexpr double kFluxRoundOff = 1e-9;
 
 }  // namespace panoptic

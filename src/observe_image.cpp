@@ -1,10 +1,11 @@
 #include "src/observe_image.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "src/units.hpp"
 
@@ -19,29 +20,113 @@ double deprojected_radius(double x, double y, const DiskOrientation& o) {
   return std::hypot(u, v);
 }
 
+namespace {
+
+struct Vec2 {
+  double x, y;
+};
+double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+
+//! Signed area of the disk |p| <= R intersected with the triangle (0, a, b): the parts
+//! of the edge a -> b inside the circle bound triangles, the parts outside circular
+//! sectors.
+double circle_triangle_area(Vec2 a, Vec2 b, double R) {
+  const auto sector = [R](Vec2 p, Vec2 q) {
+    return 0.5 * R * R * std::atan2(cross(p, q), dot(p, q));
+  };
+  const Vec2 d{b.x - a.x, b.y - a.y};
+  const double A = dot(d, d), B = dot(a, d), C = dot(a, a) - R * R;
+  const double disc = B * B - A * C;
+  if (A == 0.0) return 0.0;
+  if (disc <= 0.0) return sector(a, b);  // the edge's line misses the circle
+  // roots of A t^2 + 2 B t + C = 0 without cancellation
+  const double q = -(B + std::copysign(std::sqrt(disc), B));
+  double t1 = q / A, t2 = q != 0.0 ? C / q : -t1;
+  if (t1 > t2) std::swap(t1, t2);
+  if (t2 <= 0.0 || t1 >= 1.0) return sector(a, b);  // the chord lies off the edge
+  t1 = std::max(t1, 0.0);
+  t2 = std::min(t2, 1.0);
+  const Vec2 p1{a.x + t1 * d.x, a.y + t1 * d.y}, p2{a.x + t2 * d.x, a.y + t2 * d.y};
+  return sector(a, p1) + 0.5 * cross(p1, p2) + sector(p2, b);
+}
+
+//! Area of the disk |p| <= R intersected with a convex quadrilateral (either
+//! orientation).
+double circle_quad_area(const std::array<Vec2, 4>& quad, double R) {
+  double a = 0.0;
+  for (int i = 0; i < 4; ++i) a += circle_triangle_area(quad[i], quad[(i + 1) % 4], R);
+  return std::abs(a);
+}
+
+//! Distance from the origin to a convex quadrilateral (0 if it holds the origin).
+double distance_to_quad(const std::array<Vec2, 4>& quad) {
+  double side = 0.0, dmin = std::numeric_limits<double>::infinity();
+  bool inside = true;
+  for (int i = 0; i < 4; ++i) {
+    const Vec2 a = quad[i], b = quad[(i + 1) % 4];
+    const Vec2 d{b.x - a.x, b.y - a.y};
+    const double c = cross(d, Vec2{-a.x, -a.y});  // which side of a -> b the origin is
+    if (c != 0.0) {
+      if (side == 0.0)
+        side = c;
+      else if ((c > 0.0) != (side > 0.0))
+        inside = false;
+    }
+    const double t = std::clamp(-dot(a, d) / dot(d, d), 0.0, 1.0);
+    dmin = std::min(dmin, std::hypot(a.x + t * d.x, a.y + t * d.y));
+  }
+  return inside ? 0.0 : dmin;
+}
+
+}  // namespace
+
 DiskProjector::DiskProjector(const SkyGrid& grid, const DiskOrientation& o,
-                             std::span<const double> edges, int sub)
+                             std::span<const double> edges)
     : n_cells_(static_cast<int>(edges.size()) - 1) {
   const int n = grid.n;
+  const double sp = std::sin(o.pa_rad), cp = std::cos(o.pa_rad);
+  const double cos_i = std::cos(o.incl_rad), h = 0.5 * grid.pixel;
+  // disk-plane coordinates of a sky point: u along the major axis, v / cos i along the
+  // minor (deprojected_radius); linear, so a pixel maps to a parallelogram, and areas
+  // on the sky are cos i times those in the disk plane
+  const auto to_disk = [&](double x, double y) {
+    return Vec2{x * sp + y * cp, (x * cp - y * sp) / cos_i};
+  };
+  const double to_pixels = cos_i / (grid.pixel * grid.pixel);
   offsets_.reserve(static_cast<std::size_t>(n) * n + 1);
   offsets_.push_back(0);
-  std::map<int, int> hits;
-  const double w = 1.0 / (static_cast<double>(sub) * sub);
   for (int iy = 0; iy < n; ++iy)
     for (int ix = 0; ix < n; ++ix) {
-      hits.clear();
-      for (int sy = 0; sy < sub; ++sy)
-        for (int sx = 0; sx < sub; ++sx) {
-          const double x = grid.coord(ix) + ((sx + 0.5) / sub - 0.5) * grid.pixel;
-          const double y = grid.coord(iy) + ((sy + 0.5) / sub - 0.5) * grid.pixel;
-          const double r = deprojected_radius(x, y, o);
-          if (!(r >= edges.front() && r < edges.back())) continue;  // NaN too
-          const auto it = std::upper_bound(edges.begin(), edges.end(), r);
-          ++hits[static_cast<int>(it - edges.begin()) - 1];
+      const double xc = grid.coord(ix), yc = grid.coord(iy);
+      const std::array<Vec2, 4> quad = {to_disk(xc - h, yc - h), to_disk(xc + h, yc - h),
+                                        to_disk(xc + h, yc + h), to_disk(xc - h, yc + h)};
+      double r_max = 0.0;
+      for (const Vec2& v : quad) r_max = std::max(r_max, std::hypot(v.x, v.y));
+      const double r_min = distance_to_quad(quad);
+      if (r_max > edges.front() && r_min < edges.back()) {
+        // the pixel's area within each edge R: 0 for R <= r_min, all of it for R >=
+        // r_max; annulus k gets the difference between its two edges
+        double whole = 0.0;
+        for (int i = 0; i < 4; ++i) whole += 0.5 * cross(quad[i], quad[(i + 1) % 4]);
+        whole = std::abs(whole);
+        const auto within = [&](double r) {
+          return r >= r_max ? whole : r <= r_min ? 0.0 : circle_quad_area(quad, r);
+        };
+        // the first annulus that can reach the pixel: the one holding r_min
+        const std::size_t lo = static_cast<std::size_t>(
+            std::upper_bound(edges.begin(), edges.end(), r_min) - edges.begin());
+        std::size_t k = lo == 0 ? 0 : lo - 1;
+        double inner = within(edges[k]);
+        for (; k + 1 < edges.size(); ++k) {
+          const double outer = within(edges[k + 1]);
+          if (outer > inner) {
+            cells_.push_back(static_cast<int>(k));
+            weights_.push_back((outer - inner) * to_pixels);
+          }
+          inner = outer;
+          if (edges[k + 1] >= r_max) break;
         }
-      for (const auto& [cell, count] : hits) {
-        cells_.push_back(cell);
-        weights_.push_back(count * w);
       }
       offsets_.push_back(cells_.size());
     }

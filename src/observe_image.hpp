@@ -43,13 +43,18 @@ struct SkyGrid {
 double deprojected_radius(double x, double y, const DiskOrientation& o);
 
 //! Image [Jy/arcsec^2 or any surface brightness] of a disk whose intensity is I_k in the
-//! annulus edges_arcsec[k] <= r < edges_arcsec[k+1] (zero elsewhere), each pixel the mean
-//! of sub x sub point samples. The pixel-to-annulus weights are computed once (made for
-//! one grid and orientation) and applied to every intensity profile.
+//! annulus edges_arcsec[k] <= r < edges_arcsec[k+1] (zero elsewhere): each pixel holds
+//! the mean of I over its area, from the exact area each annulus shares with it (the
+//! pixel, mapped into the disk plane, is a parallelogram; its area within a circle is
+//! summed edge by edge from triangles and circular sectors). So a pixel wholly inside
+//! the disk has weights summing to 1, and the image's flux is
+//! sum_k I_k pi (r_k+1^2 - r_k^2) cos i to round-off however coarse the pixels (a disk
+//! far smaller than one pixel included). The pixel-to-annulus weights are computed once
+//! (made for one grid and orientation) and applied to every intensity profile.
 class DiskProjector {
  public:
   DiskProjector(const SkyGrid& grid, const DiskOrientation& o,
-                std::span<const double> edges_arcsec, int sub);
+                std::span<const double> edges_arcsec);
   std::vector<double> image(std::span<const double> intensity) const;
 
  private:
