@@ -35,6 +35,13 @@ CASES = [
     ("bad --set value", None, ["--set", "solver.rtol=-1"], ["solver.rtol", "-1"]),
     ("--set without =", None, ["--set", "solver.rtol"], ["solver.rtol"]),
     ("unknown CLI option", None, ["--frobnicate"], ["frobnicate"]),
+    # material and gas constants beyond any real one (disk.mu = 1e308 passed check and
+    # stopped the run with a Newton failure at t = 0, exit 3; a Young's modulus of 1e308
+    # ran to exit 0 with E* = inf)
+    ("gas heavier than any", None, ["--set", "disk.mu=1e308"],
+     ["disk.mu", "1e308", "<= 100"]),
+    ("a modulus beyond diamond's", None, ["--set", "material.ice_youngs_gpa=1e308"],
+     ["material.ice_youngs_gpa", "1e308", "<= 10000", "GPa"]),
     # keys inside their ranges that combine into a state that is not finite (CVODE said
     # only that its first right-hand side failed, exit 3)
     ("non-finite initial dust", None, ["--set", "dust.dust_to_gas=1e308"],
