@@ -37,6 +37,10 @@ struct CvodeCallbackData {
   DiskModel* model = nullptr;
   void* newton_iterate = nullptr;  //!< N_Vector: y of the last nonlinear-solver RHS call
   CallbackTimes* times = nullptr;  //!< accumulate callback wall times (benchmarks)
+  //! The last Jacobian's values (the pattern's CSC order), kept for the Newton matrix
+  //! I - gamma J of the steps that reuse it, and where each column's diagonal sits.
+  std::vector<double> jacobian;
+  std::vector<std::size_t> diagonal;
 };
 
 struct IntegratorOptions {
