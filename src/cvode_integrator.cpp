@@ -17,6 +17,7 @@
 #include <string>
 
 #include "src/error.hpp"
+#include "src/serial_vector_ops.hpp"
 
 namespace panoptic {
 namespace {
@@ -163,11 +164,15 @@ CvodeIntegrator::CvodeIntegrator(DiskModel& model, double t0, std::span<const do
     throw SolverError("SUNContext_Create failed");
   sunctx_ = ctx;
   y_ = N_VNew_Serial(n, ctx);
-  // CVODE clones its work vectors from y_, operations included.
+  // CVODE clones its work vectors from y_, operations included: the element-wise ones
+  // compiled with panoptic (Debian's SUNDIALS is built unoptimised;
+  // serial_vector_ops.hpp) and the weighted RMS norm in four partial sums.
+  install_serial_vector_ops(nv(y_));
   nv(y_)->ops->nvwrmsnorm = wrms_norm_callback;
   atol_ = N_VNew_Serial(n, ctx);
   callback_data_.model = &model_;
   callback_data_.newton_iterate = N_VNew_Serial(n, ctx);
+  install_serial_vector_ops(nv(callback_data_.newton_iterate));  // its copy of y
   callback_data_.times = nullptr;
   N_VConst(0.0, nv(callback_data_.newton_iterate));
   std::copy(y0.begin(), y0.end(), N_VGetArrayPointer(nv(y_)));
