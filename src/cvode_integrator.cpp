@@ -92,6 +92,7 @@ extern "C" int linsys_callback(sunrealtype t, N_Vector y, N_Vector, SUNMatrix A,
                                N_Vector) {
   auto* d = static_cast<CvodeCallbackData*>(data);
   std::vector<double>& jac = d->jacobian;
+  *jcur = jok ? SUNFALSE : SUNTRUE;  // before the evaluation, as cvLsLinSys
   if (!jok) {
     const auto t0 = Clock::now();
     const int flag = d->model->jacobian_nothrow(t, as_span(y), jac);
@@ -101,7 +102,6 @@ extern "C" int linsys_callback(sunrealtype t, N_Vector y, N_Vector, SUNMatrix A,
     }
     if (flag != 0) return flag;
   }
-  *jcur = jok ? SUNFALSE : SUNTRUE;
   double* a = SUNSparseMatrix_Data(A);
   const double c = -gamma;
   for (std::size_t k = 0; k < jac.size(); ++k) a[k] = c * jac[k];
