@@ -22,6 +22,7 @@
 #include "src/config.hpp"
 #include "src/simulation.hpp"
 #include "src/toml_guard.hpp"
+#include "tests/unit/config_error.hpp"
 
 namespace panoptic {
 namespace {
@@ -34,16 +35,8 @@ Config load(std::string_view text, const Overrides& overrides = {}) {
 
 // The message of the ConfigError that loading `text` throws ("" and a failure if none).
 std::string error_of(std::string_view text, const Overrides& overrides = {}) {
-  try {
-    load(text, overrides);
-  } catch (const ConfigError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not a ConfigError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "no error for:\n" << text;
-  return "";
+  return config_error_message([&] { load(text, overrides); },
+                              "the scene:\n" + std::string(text));
 }
 
 // Checks that `message` contains every one of `parts`.
