@@ -16,7 +16,10 @@ namespace {
 constexpr double kClampSharpness = 100.0;
 
 double value_of(double x) { return x; }
-double value_of(const AD& x) { return x.value(); }
+template <class D>
+double value_of(const Eigen::AutoDiffScalar<D>& x) {
+  return x.value();
+}
 
 //! The state a cell's particle laws depend on, the key of the per-cell caches of St and
 //! of the rates: Sigma_d, Q_m, Q_phi (0 without porosity), Sigma_g (0 if the gas is
@@ -45,10 +48,19 @@ struct Seeds {
     slots[n] = slot;
     key_index[n++] = key;
   }
-  //! The cell's state at `key` with the seeds as the AD directions.
-  void seed(const std::array<double, 4>& key, AD* local) const {
-    for (int i = 0; i < kMaxLocalDerivs; ++i) local[i] = AD(0.0);
-    for (int i = 0; i < n; ++i) local[slots[i]] = ad_seed(key[key_index[i]], i);
+  //! The cell's state at `key` with the seeds as the AD directions (A: AD where the
+  //! gas evolves, whose laws are written for it; ADCell otherwise).
+  template <class A>
+  void seed(const std::array<double, 4>& key, A* local) const {
+    for (int i = 0; i < kMaxLocalDerivs; ++i) local[i] = A(0.0);
+    for (int i = 0; i < n; ++i) local[slots[i]] = ad_seed<A>(key[key_index[i]], i);
+  }
+  //! The first n derivatives of `x` (the gradient by the seeds), zero-padded to 4.
+  template <class A>
+  std::array<double, 4> gradient(const A& x) const {
+    std::array<double, 4> g{};
+    for (int i = 0; i < n; ++i) g[i] = x.derivatives()[i];
+    return g;
   }
 };
 }  // namespace
@@ -113,28 +125,39 @@ double GrowthStokes::St(int cell, const double* yc) const {
   return particle(cell, yc).st;
 }
 
-AD GrowthStokes::St(int cell, const AD* yc) const {
+template <class A>
+A GrowthStokes::st_chained(int cell, const A* yc) const {
   if (ad_cache_.empty()) ad_cache_.resize(species_.size());
   const auto key = cell_key(codec_, gas_.evolves_slot(), yc);
   const Seeds seeds(codec_, gas_.evolves_slot());
   AdEntry& e = ad_cache_[cell];
   if (e.key != key) {
     // St depends on the state through m and phi (Sigma_d, Q_m, Q_phi) and the gas
-    // density (Sigma_g): evaluate once.
-    AD local[kMaxLocalDerivs];
-    seeds.seed(key, local);
-    const AD m = codec_.mass(cell, local), phi = codec_.phi(local);
+    // density (Sigma_g): evaluate once, by the cell's own directions.
     const double rho0 = species_[cell].rho0;
-    const AD st =
-        gas_.evolves_slot() >= 0
-            ? physics::stokes_number_ad_gas(m, phi, rho0, gas_.at_ad(cell, local), law_)
-            : physics::stokes_number(m, phi, rho0, gas_.at(cell, local), law_);
+    if (gas_.evolves_slot() >= 0) {
+      AD local[kMaxLocalDerivs];
+      seeds.seed(key, local);
+      const AD m = codec_.mass(cell, local), phi = codec_.phi(local);
+      const AD st =
+          physics::stokes_number_ad_gas(m, phi, rho0, gas_.at_ad(cell, local), law_);
+      e.st = st.value();
+      e.grad = seeds.gradient(st);
+    } else {
+      ADCell local[kMaxLocalDerivs];
+      seeds.seed(key, local);
+      const ADCell m = codec_.mass(cell, local), phi = codec_.phi(local);
+      const ADCell st = physics::stokes_number(m, phi, rho0, gas_.at(cell, local), law_);
+      e.st = st.value();
+      e.grad = seeds.gradient(st);
+    }
     e.key = key;
-    e.st = st.value();
-    for (int i = 0; i < 4; ++i) e.grad[i] = i < seeds.n ? st.derivatives()[i] : 0.0;
   }
   return ad_chain(e.st, e.grad.data(), seeds.slots, seeds.n, yc);
 }
+
+AD GrowthStokes::St(int cell, const AD* yc) const { return st_chained(cell, yc); }
+ADCell GrowthStokes::St(int cell, const ADCell* yc) const { return st_chained(cell, yc); }
 
 PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const CellGas& gas,
                            const GrowthStokes& stokes,
@@ -166,11 +189,13 @@ physics::ParticleRates<T> PorousGrowth::compute_rates(int cell, const T* yc) con
                                    gas_.at(cell, yc), species_[cell], opt_, &p.a);
   } else {
     const T m = codec_.mass(cell, yc), phi = codec_.phi(yc), st = stokes_.St(cell, yc);
-    if (gas_.evolves_slot() >= 0)
+    if constexpr (std::is_same_v<T, AD>) {  // evolving gas (rates_ad)
       return physics::particle_rates_ad_gas(yc[codec_.sigma_slot], m, phi, st,
                                             gas_.at_ad(cell, yc), species_[cell], opt_);
-    return physics::particle_rates(yc[codec_.sigma_slot], m, phi, st, gas_.at(cell, yc),
-                                   species_[cell], opt_);
+    } else {  // ADCell: static gas
+      return physics::particle_rates(yc[codec_.sigma_slot], m, phi, st, gas_.at(cell, yc),
+                                     species_[cell], opt_);
+    }
   }
 }
 
@@ -196,17 +221,23 @@ void PorousGrowth::rates_ad(int cell, const AD* yc, AD& dlnm_dt, AD& dlnphi_dt) 
   AdRates& e = ad_memo_[cell];
   if (e.key != key) {
     // The rates depend on the state through Sigma_d, m, phi and the gas density: evaluate
-    // once.
-    AD local[kMaxLocalDerivs];
-    seeds.seed(key, local);
-    const auto r = compute_rates(cell, local);
-    e.key = key;
-    e.dlnm = r.dlnm_dt.value();
-    e.dlnphi = r.dlnphi_dt.value();
-    for (int i = 0; i < 4; ++i) {
-      e.grad_m[i] = i < n ? r.dlnm_dt.derivatives()[i] : 0.0;
-      e.grad_phi[i] = i < n ? r.dlnphi_dt.derivatives()[i] : 0.0;
+    // once, by the cell's own directions.
+    const auto store = [&](const auto& r) {
+      e.dlnm = r.dlnm_dt.value();
+      e.dlnphi = r.dlnphi_dt.value();
+      e.grad_m = seeds.gradient(r.dlnm_dt);
+      e.grad_phi = seeds.gradient(r.dlnphi_dt);
+    };
+    if (gas_.evolves_slot() >= 0) {
+      AD local[kMaxLocalDerivs];
+      seeds.seed(key, local);
+      store(compute_rates(cell, local));
+    } else {
+      ADCell local[kMaxLocalDerivs];
+      seeds.seed(key, local);
+      store(compute_rates(cell, local));
     }
+    e.key = key;
   }
   dlnm_dt = ad_chain(e.dlnm, e.grad_m.data(), seeds.slots, n, yc);
   dlnphi_dt = ad_chain(e.dlnphi, e.grad_phi.data(), seeds.slots, n, yc);

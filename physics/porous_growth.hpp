@@ -90,8 +90,12 @@ class GrowthStokes : public StokesModel {
   //! Q_phi) are computed once per cell state and chained onto the caller's seeds
   //! (ad_chain), instead of one AD Newton solve per use (four per cell and Jacobian).
   AD St(int cell, const AD* ycell) const override;
+  //! The same chained onto ADCell seeds (the growth rates' own Jacobian, static gas).
+  ADCell St(int cell, const ADCell* ycell) const;
 
  private:
+  template <class A>
+  A st_chained(int cell, const A* ycell) const;
   static constexpr int kKey = 4;
   mutable std::vector<std::array<double, kKey>> cache_key_;
   mutable std::vector<Particle> cache_;

@@ -19,9 +19,18 @@ inline constexpr int kMaxLocalDerivs = 12;
 using ADVector = Eigen::Matrix<double, kMaxLocalDerivs, 1>;
 using AD = Eigen::AutoDiffScalar<ADVector>;
 
-//! An AD variable with value `v`, seeded as local input `k` (< kMaxLocalDerivs).
-inline AD ad_seed(double v, int k) {
-  AD a(v);
+//! The derivatives of one cell's costly local laws (the Stokes number, the growth
+//! rates) by that cell's own state: Sigma_d, Q_m, Q_phi and Sigma_g, at most four
+//! directions. Differentiated once per cell state with these, a third of the arithmetic
+//! of AD's twelve entries, and chained onto any caller's AD seeds by ad_chain(); each
+//! derivative entry is computed by the same operations either way, so the same bits.
+inline constexpr int kCellDerivs = 4;
+using ADCell = Eigen::AutoDiffScalar<Eigen::Matrix<double, kCellDerivs, 1>>;
+
+//! An AD variable (AD or ADCell) with value `v`, seeded as local input `k`.
+template <class A = AD>
+A ad_seed(double v, int k) {
+  A a(v);
   a.derivatives()[k] = 1.0;
   return a;
 }
@@ -29,8 +38,9 @@ inline AD ad_seed(double v, int k) {
 //! An AD value from a value v and its gradient grad[i] = dv/d y[slots[i]] with respect to
 //! entries of a local state, chained onto the derivatives the entries of `y` carry: lets
 //! a costly local law be differentiated once per cell and reused under any seeding.
-inline AD ad_chain(double v, const double* grad, const int* slots, int n, const AD* y) {
-  AD out(v);
+template <class A>
+A ad_chain(double v, const double* grad, const int* slots, int n, const A* y) {
+  A out(v);
   for (int i = 0; i < n; ++i)
     if (grad[i] != 0.0) out.derivatives() += grad[i] * y[slots[i]].derivatives();
   return out;
