@@ -250,6 +250,12 @@ void CvodeIntegrator::create_cvode(double t0) {
   check(CVodeSetMaxNumSteps(cvode_, 5000), "CVodeSetMaxNumSteps");
   if (opt_.max_dt > 0.0) check(CVodeSetMaxStep(cvode_, opt_.max_dt), "CVodeSetMaxStep");
   check(CVodeSetNonlinConvCoef(cvode_, opt_.newton_coef), "CVodeSetNonlinConvCoef");
+  if (opt_.steps_per_jacobian > 0) {
+    check(CVodeSetJacEvalFrequency(cvode_, opt_.steps_per_jacobian),
+          "CVodeSetJacEvalFrequency");
+    check(CVodeSetLSetupFrequency(cvode_, opt_.steps_per_jacobian),
+          "CVodeSetLSetupFrequency");
+  }
 }
 
 void CvodeIntegrator::free_cvode() {

@@ -50,6 +50,9 @@ struct IntegratorOptions {
   long max_steps = 2000000;         //!< total step budget of the run
   double max_dt = 0.0;              //!< largest step [s], 0 = unlimited
   double newton_coef = 0.03;        //!< CVodeSetNonlinConvCoef (solver.newton_coef)
+  //! CVodeSetJacEvalFrequency and CVodeSetLSetupFrequency (solver.steps_per_jacobian);
+  //! 0: CVODE's own (51 and 20)
+  long steps_per_jacobian = 0;
 };
 
 //! CVODE's weighted RMS norm sqrt(sum_i (x_i w_i)^2 / n), summed in four independent

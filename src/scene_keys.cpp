@@ -419,6 +419,14 @@ std::vector<KeySpec> make_keys() {
           "tolerance; 0.03 rather than CVODE's 0.1: less Newton error in the local error "
           "estimate, fewer failed steps (tests/bench/results/performance_log.md)",
           0.0, true, 1.0, false),
+      integer("solver.steps_per_jacobian", "10",
+              "k: a Newton-matrix factorisation at least every k steps and a fresh "
+              "Jacobian at the first one k or more steps after the last "
+              "(CVodeSetLSetupFrequency, CVodeSetJacEvalFrequency; CVODE's own are 20 "
+              "and 51): a Jacobian of at most 2k - 1 steps keeps Newton converging where "
+              "a cell crosses one of the model's smooth switches, fewer failed "
+              "iterations and steps (README, Performance); 0: CVODE's own",
+              0, 1e6),
 
       // [solver] (continued) and [checkpoint]: restart, README "Restart"
       flag("solver.reinit_at_snapshots", "true",

@@ -489,6 +489,7 @@ IntegratorOptions Simulation::integrator_options() const {
   o.max_steps = cfg_.integer("solver.max_steps");
   o.max_dt = cfg_.real("solver.max_dt_yr") * kYr;
   o.newton_coef = cfg_.real("solver.newton_coef");
+  o.steps_per_jacobian = cfg_.integer("solver.steps_per_jacobian");
   const auto& L = *layout_;
   const double atol = cfg_.real("solver.atol_sigma");
   o.atol.resize(L.size());

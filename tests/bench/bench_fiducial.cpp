@@ -6,7 +6,8 @@
 // operations). Usage: build/tests/bench_fiducial [--runs R] [--trace K] [--lts] [--set
 // key=value
 // ...]
-//   --trace K: every K-th step, print t, h, order and the components with the largest
+//   --trace K: every K-th step, print t, h, order, the counts so far (convergence and
+//              error-test failures, Jacobians, RHS) and the components with the largest
 //              weighted local error (which variables limit the step), then the physical
 //              state of the cell of the largest (after "||").
 //   --lts:     also estimate from the coupled run what a scheme that stepped blocks of
@@ -152,8 +153,12 @@ Result run_once(const Config& cfg, long trace_every, bool lts) {
       }
       if (trace_every <= 0 || nst % trace_every != 0) return;
       const auto info = cvode.step_info(3);
-      std::printf("t = %.4e yr  step %ld  h = %.3e yr  q = %d  limited by:",
-                  t / units::kYr, nst, info.h / units::kYr, info.order);
+      const SolverStats so_far = cvode.stats();  // counts so far (failures, Jacobians)
+      std::printf(
+          "t = %.4e yr  step %ld  h = %.3e yr  q = %d  (ncf %ld netf %ld nje %ld nfe "
+          "%ld)  limited by:",
+          t / units::kYr, nst, info.h / units::kYr, info.order, so_far.nncf, so_far.netf,
+          so_far.nje, so_far.nfe);
       for (const auto& [i, e] : info.largest_errors)
         std::printf("  %s (%.2f)", sim.model().layout().describe(i).c_str(), e);
       if (!info.largest_errors.empty())  // the physical state where the step is limited

@@ -14,6 +14,7 @@ largest differ by a factor, a single run's error at that rtol is noise.
     /usr/bin/python3 tests/bench/roundoff_scatter.py --exe build/panoptic --workdir DIR \
         --ref DIR_WP/fiducial_N4096_rtol1e-10.h5 [--scene fiducial] [--n-cells 350] \
         [--stretch 0.5] [--rtol 1e-2 1e-3 1e-4 1e-5 1e-6] [--draws 5] [--jobs 2]
+        [--set KEY=VALUE ...]
 
 writes DIR/roundoff_scatter_<scene>_N<n>.md (the table, with the median wall time of
 each rtol) and .json (every run)."""
@@ -33,13 +34,17 @@ import work_precision as wp  # noqa: E402
 import numpy as np  # noqa: E402
 
 
-def run(exe, workdir, scene, n, stretch, rtol):
-    """One run; returns (steps, outcomes) or raises with the run's last error line."""
-    out = os.path.join(workdir, f"{scene}_N{n}_s{stretch:g}_rtol{rtol!r}.h5")
+def run(exe, workdir, scene, n, stretch, rtol, extra=()):
+    """One run; returns (steps, outcomes) or raises with the run's last error line.
+    `extra`: further scene settings, key=value (--set)."""
+    tag = "".join("_" + kv.split(".")[-1].replace("=", "") for kv in extra)
+    out = os.path.join(workdir, f"{scene}_N{n}_s{stretch:g}{tag}_rtol{rtol!r}.h5")
     cmd = [exe, "run", os.path.join(REPO, "params", scene + ".toml"), "-o", out,
            "--overwrite", "--set", f"grid.n_cells={n}", "--set", f"grid.stretch={stretch:g}",
            "--set", f"solver.rtol={rtol!r}", "--set", "checkpoint.every_wall_s=0",
            "--set", "solver.max_steps=2000000"]
+    for kv in extra:
+        cmd += ["--set", kv]
     p = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     if p.returncode != 0:
         return {"rtol": rtol, "error": wp.error_line(p.stderr)}
@@ -59,6 +64,8 @@ def main():
     ap.add_argument("--rtol", nargs="+", type=float, default=[1e-2, 1e-3, 1e-4, 1e-5, 1e-6])
     ap.add_argument("--draws", type=int, default=5)
     ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a further scene setting for every run (repeatable)")
     args = ap.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
     exe = os.path.abspath(args.exe)
@@ -69,7 +76,8 @@ def main():
             for k in range(args.draws)]
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         done = list(pool.map(lambda t: (t[0], run(exe, args.workdir, args.scene,
-                                                  args.n_cells, args.stretch, t[1])), todo))
+                                                  args.n_cells, args.stretch, t[1],
+                                                  args.set)), todo))
     names = wp.OUTCOMES + ["max"]
     rows, records = [], []
     for rt in args.rtol:
@@ -91,13 +99,15 @@ def main():
         rows.append(f"| {rt:g} | {len(ok)}/{len(recs)} | "
                     + (f"{min(steps)}–{max(steps)}" if steps else "-") + f" | {wall} | "
                     + " | ".join(cells) + " |")
-    head = (f"{args.scene}, N = {args.n_cells}, stretch {args.stretch:g}; {args.draws} draws "
+    sets = "".join(f", {kv}" for kv in args.set)
+    head = (f"{args.scene}, N = {args.n_cells}, stretch {args.stretch:g}{sets}; {args.draws} draws "
             f"per rtol (rtol x (1 + k 1e-3)); {sha}\n\nError against the reference, "
             "median / largest over the draws:\n\n"
             "| rtol | finished | steps | wall [s], median | " + " | ".join(names) + " |\n|"
             + "---|" * (4 + len(names)) + "\n")
     text = head + "\n".join(rows) + "\n"
-    base = os.path.join(args.workdir, f"roundoff_scatter_{args.scene}_N{args.n_cells}")
+    tag = "".join("_" + kv.split(".")[-1].replace("=", "") for kv in args.set)
+    base = os.path.join(args.workdir, f"roundoff_scatter_{args.scene}_N{args.n_cells}{tag}")
     with open(base + ".md", "w") as f:
         f.write(text)
     with open(base + ".json", "w") as f:

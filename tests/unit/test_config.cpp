@@ -228,6 +228,10 @@ TEST(Config, InclusiveMinimum) {
                {"scene.toml:2:", "disk.T_floor = -1e-300", "must be >= 0 [K]"});
   expect_parts(error_of("[grid]\nn_cells = 3\n"),
                {"scene.toml:2:", "grid.n_cells = 3", "must be >= 4 and <= 1000000"});
+  expect_parts(error_of("[solver]\nsteps_per_jacobian = -1\n"),
+               {"scene.toml:2:", "solver.steps_per_jacobian = -1", "must be >= 0"});
+  EXPECT_EQ(
+      load("[solver]\nsteps_per_jacobian = 0\n").integer("solver.steps_per_jacobian"), 0);
 }
 
 TEST(Config, ExclusiveAndInclusiveMaximum) {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
 
 #include "src/cvode_integrator.hpp"
 #include "src/disk_model.hpp"
@@ -146,24 +147,51 @@ TEST(Integrator, StepInfoHoldsTheErrorTestOfTheLastStep) {
   EXPECT_GT(norms[norms.size() / 2], 0.01);
 }
 
+//! The Robertson problem at rtol 1e-6 to t = 4e5 with the options `set` changes: the
+//! solver's counts and y1 at the end.
+template <class Set>
+std::pair<SolverStats, double> robertson_run(Set set) {
+  const auto model = robertson_model();
+  IntegratorOptions opt = robertson_options(1e-6);
+  set(opt);
+  CvodeIntegrator cvode(*model, 0.0, kRobertsonY0, opt);
+  cvode.advance_to(4e5);
+  return {cvode.stats(), cvode.state()[0]};
+}
+
 TEST(Integrator, NewtonCoefficientReachesCvode) {
   // solver.newton_coef is CVODE's nonlinear convergence coefficient: a much tighter one
   // must take more Newton iterations per step on the nonlinear Robertson problem and
   // give the same answer (both are well inside the tolerance of the other).
-  auto run = [](double coef) {
-    const auto model = robertson_model();
-    IntegratorOptions opt = robertson_options(1e-6);
-    opt.newton_coef = coef;
-    CvodeIntegrator cvode(*model, 0.0, kRobertsonY0, opt);
-    cvode.advance_to(4e5);
-    const auto s = cvode.stats();
-    return std::make_pair(static_cast<double>(s.nni) / static_cast<double>(s.nst),
-                          cvode.state()[0]);
+  const auto its_per_step = [](const SolverStats& s) {
+    return static_cast<double>(s.nni) / static_cast<double>(s.nst);
   };
-  const auto [loose_its, loose_y1] = run(1.0);
-  const auto [tight_its, tight_y1] = run(1e-4);
-  EXPECT_GT(tight_its, 1.2 * loose_its);
+  const auto [loose, loose_y1] =
+      robertson_run([](IntegratorOptions& o) { o.newton_coef = 1.0; });
+  const auto [tight, tight_y1] =
+      robertson_run([](IntegratorOptions& o) { o.newton_coef = 1e-4; });
+  EXPECT_GT(its_per_step(tight), 1.2 * its_per_step(loose));
   EXPECT_NEAR(tight_y1 / loose_y1, 1.0, 1e-4);
+}
+
+TEST(Integrator, StepsPerJacobianReachesCvode) {
+  // solver.steps_per_jacobian = k: a Newton-matrix set-up at least every k steps, with a
+  // fresh Jacobian at the first set-up k or more steps after the last one (so a
+  // Jacobian serves k to 2k - 1 steps; set-ups for a changed step size come between).
+  // At 1 every step starts from a fresh one; CVODE's own (0) lets one serve ~50 steps.
+  // All give the same answer within the tolerance.
+  const auto every = [](long k) {
+    return robertson_run([k](IntegratorOptions& o) { o.steps_per_jacobian = k; });
+  };
+  const auto [fresh, fresh_y1] = every(1);
+  const auto [every5, every5_y1] = every(5);
+  const auto [own, own_y1] = every(0);
+  EXPECT_GE(fresh.nje, fresh.nst);  // at least one per step (more after failures)
+  EXPECT_GE(every5.nje, every5.nst / 9);
+  EXPECT_LT(every5.nje, every5.nst / 2);
+  EXPECT_LT(own.nje, own.nst / 10);
+  EXPECT_NEAR(fresh_y1 / own_y1, 1.0, 1e-4);
+  EXPECT_NEAR(every5_y1 / own_y1, 1.0, 1e-4);
 }
 
 TEST(Integrator, StepBudgetGivesSolverError) {
