@@ -16,9 +16,13 @@ std::vector<std::string> preset_overrides(const std::string& preset) {
   // accurate: 1e-6 gives the same outcomes as 1e-5 at 1000 cells on the two measured
   // scenes (1.25-1.5x the time); kept as a margin for scenes without a work-precision
   // study, so that --accurate never loosens a scene's own tolerance
-  // (compact_fragmentation uses the default 1e-6).
+  // (compact_fragmentation uses the default 1e-6). Its steps are short enough that a
+  // Jacobian kept for CVODE's own 51 steps rarely stalls Newton: the fresher ones of
+  // solver.steps_per_jacobian = 10 cost more than they save there (fiducial: 10.75
+  // against 10.05 s, bench_fiducial --runs 3; README, Performance).
   if (preset == "fast") return {"grid.n_cells=250", "solver.rtol=1e-4"};
-  if (preset == "accurate") return {"grid.n_cells=1000", "solver.rtol=1e-6"};
+  if (preset == "accurate")
+    return {"grid.n_cells=1000", "solver.rtol=1e-6", "solver.steps_per_jacobian=0"};
   throw std::invalid_argument("unknown preset '" + preset + "' (fast, accurate)");
 }
 

@@ -36,6 +36,10 @@ TEST(Presets, OverrideTheSceneFile) {
   EXPECT_EQ(acc.integer("grid.n_cells"), 1000);
   EXPECT_DOUBLE_EQ(fast.real("solver.rtol"), 1e-4);
   EXPECT_DOUBLE_EQ(acc.real("solver.rtol"), 1e-6);
+  // --accurate keeps CVODE's own Jacobian reuse; the others the scene's (default 10)
+  EXPECT_EQ(acc.integer("solver.steps_per_jacobian"), 0);
+  EXPECT_EQ(fast.integer("solver.steps_per_jacobian"), 10);
+  EXPECT_EQ(none.integer("solver.steps_per_jacobian"), 10);
   // the scene's cell spacing is kept
   EXPECT_DOUBLE_EQ(fast.real("grid.stretch"), 0.5);
   EXPECT_DOUBLE_EQ(acc.real("grid.stretch"), 0.5);
