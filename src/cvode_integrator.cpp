@@ -227,22 +227,13 @@ void CvodeIntegrator::create_cvode(double t0) {
                             SUNSparseMatrix_IndexValues(static_cast<SUNMatrix>(A_)));
   callback_data_.jacobian.assign(static_cast<std::size_t>(pattern.nnz()), 0.0);
   callback_data_.diagonal.assign(static_cast<std::size_t>(n), 0);
-  {
-    const sunindextype* colptrs =
-        SUNSparseMatrix_IndexPointers(static_cast<SUNMatrix>(A_));
-    const sunindextype* rows = SUNSparseMatrix_IndexValues(static_cast<SUNMatrix>(A_));
-    for (sunindextype j = 0; j < n; ++j) {
-      const sunindextype* begin = rows + colptrs[j];
-      const sunindextype* end = rows + colptrs[j + 1];
-      const sunindextype* it = std::find(begin, end, j);
-      if (it == end)
-        throw std::logic_error(
-            "CvodeIntegrator: the Jacobian pattern lacks the diagonal of "
-            "column " +
-            std::to_string(j));
-      callback_data_.diagonal[static_cast<std::size_t>(j)] =
-          static_cast<std::size_t>(it - rows);
-    }
+  for (sunindextype j = 0; j < n; ++j) {
+    const long k = pattern.position(j, j);
+    if (k < 0)
+      throw std::logic_error(
+          "CvodeIntegrator: the Jacobian pattern lacks the diagonal of column " +
+          std::to_string(j));
+    callback_data_.diagonal[static_cast<std::size_t>(j)] = static_cast<std::size_t>(k);
   }
   check(CVodeSetLinSysFn(cvode_, linsys_callback), "CVodeSetLinSysFn");
   // Our step budget is counted across calls (advance_to); CVODE's per-call limit of 500
