@@ -11,10 +11,12 @@ std::vector<std::string> preset_overrides(const std::string& preset) {
   if (preset.empty()) return {};
   // Cell count and tolerance only: the scene keeps its cell spacing (grid.stretch).
   // fast: at 250 cells the grid's error (5 % in the planetesimal mass) dwarfs the time
-  // error, and rtol 1e-4 gives the same largest error as 1e-5 in every round-off draw
-  // for 16 % less time (tests/bench/results/roundoff_scatter_presets.md).
+  // error, and rtol 1e-4 gives nearly the largest error of 1e-5 in every round-off draw
+  // (5.1 against 5.0 %) for 13 % less time
+  // (tests/bench/results/roundoff_scatter_presets.md).
+  //
   // accurate: 1e-6 gives the same outcomes as 1e-5 at 1000 cells on the two measured
-  // scenes (1.25-1.5x the time); kept as a margin for scenes without a work-precision
+  // scenes (1.2-1.3x the time); kept as a margin for scenes without a work-precision
   // study, so that --accurate never loosens a scene's own tolerance
   // (compact_fragmentation uses the default 1e-6). Its steps are short enough that a
   // Jacobian kept for CVODE's own 51 steps rarely stalls Newton: the fresher ones of
