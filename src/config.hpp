@@ -50,6 +50,10 @@ const std::vector<KeySpec>& scene_keys();
 
 using ConfigValue = std::variant<double, long, bool, std::string, std::vector<double>>;
 
+//! The schema default of a real-valued key (`KeySpec::default_toml` as parsed for the
+//! scene; throws for a key that is not in the schema or not real).
+double default_real(std::string_view key);
+
 //! Where a value came from, for error messages: "params/x.toml:7:11", "--set", "default".
 struct ValueOrigin {
   std::string where;

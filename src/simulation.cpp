@@ -413,8 +413,7 @@ void Simulation::check_start_is_finite() const {
     std::string far;
     for (const KeySpec& spec : scene_keys()) {
       if (spec.type != KeyType::kReal || !cfg_.user_set(spec.key)) continue;
-      const double v = cfg_.real(spec.key),
-                   d = std::strtod(spec.default_toml.c_str(), nullptr);
+      const double v = cfg_.real(spec.key), d = default_real(spec.key);
       if (d != 0.0 && v != 0.0 && std::abs(std::log10(std::abs(v / d))) > 3.0)
         far += (far.empty() ? "" : ", ") + spec.key + " = " + num(v) + " (default " +
                spec.default_toml + ", " + cfg_.where(spec.key) + ")";

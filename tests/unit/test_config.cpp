@@ -70,6 +70,22 @@ TEST(Config, EmptySceneHoldsEveryDefault) {
   EXPECT_EQ(c.file(), "scene.toml");
 }
 
+// default_real() is the value an empty scene resolves to, for every real key (the
+// "set far from their defaults" hint of a non-finite start compares with it).
+TEST(Config, DefaultRealIsTheEmptySceneValue) {
+  const Config c = load("");
+  int reals = 0;
+  for (const KeySpec& spec : scene_keys()) {
+    if (spec.type != KeyType::kReal) continue;
+    EXPECT_EQ(default_real(spec.key), c.real(spec.key)) << spec.key;
+    ++reals;
+  }
+  EXPECT_GT(reals, 20);
+  EXPECT_EQ(default_real("disk.alpha"), 1e-3);
+  EXPECT_THROW(default_real("disk.model"), Error);        // a string key
+  EXPECT_THROW(default_real("disk.no_such_key"), Error);  // not in the schema
+}
+
 TEST(Config, FileValuesAreUserSetWithTheirPosition) {
   const Config c = load(
       "# a scene\n"
