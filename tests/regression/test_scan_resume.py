@@ -42,6 +42,26 @@ def completed_status(out):
     return n
 
 
+def complete_files(out):
+    """Runs whose file is complete as `panoptic scan` checks it (/solver status
+    "completed", a /summary): a run can end its file in the instant between its process's
+    exit and its worker's .status line, so a kill there leaves a complete file that the
+    .status files do not count, and the rerun (which checks the files) skips it."""
+    names = []
+    for p in glob.glob(f"{out}/runs/*.h5"):
+        if p.endswith(".chk.h5"):
+            continue
+        try:
+            with h5py.File(p, "r") as f:
+                st = f["solver"].attrs.get("status", b"")
+                st = st.decode() if isinstance(st, bytes) else str(st)
+                if st == "completed" and "summary" in f:
+                    names.append(os.path.basename(p)[:-3])
+        except (OSError, KeyError):
+            pass
+    return sorted(names)
+
+
 def main():
     args = parse_args()
     c = Checks()
@@ -62,8 +82,11 @@ def main():
     c.check(os.path.exists(f"{out}/manifest.toml"), "the manifest was written before the runs")
     s = summary(out) if os.path.exists(f"{out}/summary.h5") else None
     c.check(s is None, "the killed scan wrote no summary (it is rebuilt by the rerun)")
-    done = sorted(os.path.basename(p)[:-7] for p in glob.glob(f"{out}/runs/*.status")
-                  if "outcome=completed" in open(p).read())
+    marked = sorted(os.path.basename(p)[:-7] for p in glob.glob(f"{out}/runs/*.status")
+                    if "outcome=completed" in open(p).read())
+    done = complete_files(out)
+    c.check(set(marked) <= set(done),
+            f"every run its .status calls completed has a complete file: {marked}, {done}")
     c.check(2 <= len(done) < 8, f"{len(done)} of 8 runs were complete at the kill: {done}")
     ids = {n: run_id(f"{out}/runs/{n}.h5") for n in done}
     # 2 the same command again completes the scan, skipping the complete runs
