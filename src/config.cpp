@@ -737,18 +737,6 @@ const std::map<std::string, ConfigValue, std::less<>>& default_values() {
   return values;
 }
 
-}  // namespace
-
-double default_real(std::string_view key) {
-  const auto it = default_values().find(key);
-  if (it == default_values().end() || !std::holds_alternative<double>(it->second))
-    throw Error("internal error: " + std::string(key) +
-                " is not a real key of the schema");
-  return std::get<double>(it->second);
-}
-
-namespace {
-
 template <class T>
 const T& get(const Config& config, std::string_view key, const char* accessor) {
   const auto it = config.values_.find(key);
@@ -763,6 +751,14 @@ const T& get(const Config& config, std::string_view key, const char* accessor) {
 }
 
 }  // namespace
+
+double default_real(std::string_view key) {
+  const auto it = default_values().find(key);
+  if (it == default_values().end() || !std::holds_alternative<double>(it->second))
+    throw Error("internal error: " + std::string(key) +
+                " is not a real key of the schema");
+  return std::get<double>(it->second);
+}
 
 // ---------------------------------------------------------------------------------------
 // Config
