@@ -1,5 +1,6 @@
 #include "physics/dust_transport.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -242,12 +243,19 @@ void DustTransport::declare_pattern(PatternBuilder& p) const {
   }
 }
 
-void DustTransport::add_rhs(double, std::span<const double> y,
+void DustTransport::add_rhs(double t, std::span<const double> y,
                             std::span<double> ydot) const {
+  add_rhs_cells(t, y, ydot, 0, grid_.n_cells());
+}
+
+// Cells [lo, hi) are fed by the faces lo..hi (face f: between cells f - 1 and f; face n,
+// the outer edge, carries nothing, spec §6.3).
+void DustTransport::add_rhs_cells(double, std::span<const double> y,
+                                  std::span<double> ydot, int lo, int hi) const {
   const int n = grid_.n_cells(), nt = static_cast<int>(transported_.size());
   std::array<double, kMaxVars> flows{}, received{};
   double sublimated = 0.0;
-  for (int f = 0; f < n; ++f) {
+  for (int f = lo; f <= std::min(hi, n - 1); ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
     face_flows(f, &y[layout_.index(a, 0)], &y[layout_.index(b, 0)], y, flows.data());
     received_flows(f, flows.data(), received.data(), sublimated, flows[0] < 0.0);
@@ -263,14 +271,19 @@ void DustTransport::add_rhs(double, std::span<const double> y,
   }
 }
 
-void DustTransport::add_jacobian(double, std::span<const double> y,
+void DustTransport::add_jacobian(double t, std::span<const double> y,
                                  JacobianValues& jac) const {
+  add_jacobian_cells(t, y, jac, 0, grid_.n_cells());
+}
+
+void DustTransport::add_jacobian_cells(double, std::span<const double> y,
+                                       JacobianValues& jac, int lo, int hi) const {
   const int n = grid_.n_cells(), nv = layout_.n_cell_vars();
   const int nt = static_cast<int>(transported_.size()), nloc = 2 * nv;
   std::array<AD, kMaxVars> ya, yb, flows, received;
   std::array<double, kMaxVars> d_far{}, unit{}, rec_far{};
   AD sublimated;
-  for (int f = 0; f < n; ++f) {
+  for (int f = lo; f <= std::min(hi, n - 1); ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
     for (int j = 0; j < nv; ++j) {
       ya[j] = ad_seed(y[layout_.index(a, j)], j);

@@ -73,6 +73,10 @@ class DustTransport : public PhysicsModule {
                std::span<double> ydot) const override;
   void add_jacobian(double t, std::span<const double> y,
                     JacobianValues& jac) const override;
+  void add_rhs_cells(double t, std::span<const double> y, std::span<double> ydot, int lo,
+                     int hi) const override;
+  void add_jacobian_cells(double t, std::span<const double> y, JacobianValues& jac,
+                          int lo, int hi) const override;
 
   int sigma_slot() const { return slot_; }
   int m_out_slot() const { return g_out_; }

@@ -81,11 +81,16 @@ void sinks(const ParticleCodec& codec, int coag_slot, int si_slot, const T* yc,
 
 }  // namespace
 
-void Planetesimals::add_rhs(double, std::span<const double> y,
+void Planetesimals::add_rhs(double t, std::span<const double> y,
                             std::span<double> ydot) const {
+  add_rhs_cells(t, y, ydot, 0, layout_.n_cells());
+}
+
+void Planetesimals::add_rhs_cells(double, std::span<const double> y,
+                                  std::span<double> ydot, int lo, int hi) const {
   const int nv = layout_.n_cell_vars();
   double out[kMaxLocalDerivs];
-  for (int i = 0; i < layout_.n_cells(); ++i) {
+  for (int i = lo; i < hi; ++i) {
     const double* yc = &y[layout_.index(i, 0)];
     double coag = 0.0, si = 0.0;
     cell_rates(i, yc, coag, si);
@@ -94,11 +99,16 @@ void Planetesimals::add_rhs(double, std::span<const double> y,
   }
 }
 
-void Planetesimals::add_jacobian(double, std::span<const double> y,
+void Planetesimals::add_jacobian(double t, std::span<const double> y,
                                  JacobianValues& jac) const {
+  add_jacobian_cells(t, y, jac, 0, layout_.n_cells());
+}
+
+void Planetesimals::add_jacobian_cells(double, std::span<const double> y,
+                                       JacobianValues& jac, int lo, int hi) const {
   const int nv = layout_.n_cell_vars();
   AD yc[kMaxLocalDerivs], out[kMaxLocalDerivs];
-  for (int i = 0; i < layout_.n_cells(); ++i) {
+  for (int i = lo; i < hi; ++i) {
     for (int j = 0; j < nv; ++j) yc[j] = ad_seed(y[layout_.index(i, j)], j);
     AD coag, si;
     cell_rates(i, yc, coag, si);

@@ -70,6 +70,10 @@ class Planetesimals : public PhysicsModule {
                std::span<double> ydot) const override;
   void add_jacobian(double t, std::span<const double> y,
                     JacobianValues& jac) const override;
+  void add_rhs_cells(double t, std::span<const double> y, std::span<double> ydot, int lo,
+                     int hi) const override;
+  void add_jacobian_cells(double t, std::span<const double> y, JacobianValues& jac,
+                          int lo, int hi) const override;
 
   //! Take the growth rates of the coagulation channel from the growth module's memo
   //! (same state, same options: the same numbers, computed once per RHS).

@@ -267,9 +267,14 @@ void PorousGrowth::declare_pattern(PatternBuilder& p) const {
     }
 }
 
-void PorousGrowth::add_rhs(double, std::span<const double> y,
+void PorousGrowth::add_rhs(double t, std::span<const double> y,
                            std::span<double> ydot) const {
-  for (int i = 0; i < layout_.n_cells(); ++i) {
+  add_rhs_cells(t, y, ydot, 0, layout_.n_cells());
+}
+
+void PorousGrowth::add_rhs_cells(double, std::span<const double> y,
+                                 std::span<double> ydot, int lo, int hi) const {
+  for (int i = lo; i < hi; ++i) {
     double dqm = 0.0, dqphi = 0.0;
     cell_sources(i, &y[layout_.index(i, 0)], dqm, dqphi);
     ydot[layout_.index(i, codec_.qm_slot)] += dqm;
@@ -277,11 +282,16 @@ void PorousGrowth::add_rhs(double, std::span<const double> y,
   }
 }
 
-void PorousGrowth::add_jacobian(double, std::span<const double> y,
+void PorousGrowth::add_jacobian(double t, std::span<const double> y,
                                 JacobianValues& jac) const {
+  add_jacobian_cells(t, y, jac, 0, layout_.n_cells());
+}
+
+void PorousGrowth::add_jacobian_cells(double, std::span<const double> y,
+                                      JacobianValues& jac, int lo, int hi) const {
   const int nv = layout_.n_cell_vars();
   AD yc[kMaxLocalDerivs];
-  for (int i = 0; i < layout_.n_cells(); ++i) {
+  for (int i = lo; i < hi; ++i) {
     for (int j = 0; j < nv; ++j) yc[j] = ad_seed(y[layout_.index(i, j)], j);
     AD dqm, dqphi;
     cell_sources(i, yc, dqm, dqphi);

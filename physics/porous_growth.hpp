@@ -124,6 +124,10 @@ class PorousGrowth : public PhysicsModule {
                std::span<double> ydot) const override;
   void add_jacobian(double t, std::span<const double> y,
                     JacobianValues& jac) const override;
+  void add_rhs_cells(double t, std::span<const double> y, std::span<double> ydot, int lo,
+                     int hi) const override;
+  void add_jacobian_cells(double t, std::span<const double> y, JacobianValues& jac,
+                          int lo, int hi) const override;
 
   //! The rates of cell `cell` at state y, for output and tests.
   physics::ParticleRates<double> rates(int cell, std::span<const double> y) const;

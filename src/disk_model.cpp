@@ -44,6 +44,32 @@ void DiskModel::jacobian(double t, std::span<const double> y,
     if (!active_ || active_(m->name())) m->add_jacobian(t, y, jac);
 }
 
+void DiskModel::rhs_cells(double t, std::span<const double> y, std::span<double> ydot,
+                          int lo, int hi) const {
+  // The rows the modules may write besides their own (the faces' other cells) are
+  // cleared too, so that nothing accumulates there from call to call.
+  const int n = layout_->n_cells();
+  std::fill(ydot.begin() + layout_->index(std::max(0, lo - 1), 0),
+            ydot.begin() + layout_->index(std::min(n, hi + 1), 0), 0.0);
+  std::fill(ydot.begin() + layout_->index(n, 0), ydot.end(), 0.0);  // the globals
+  for (const auto& m : modules_)
+    if (!active_ || active_(m->name())) m->add_rhs_cells(t, y, ydot, lo, hi);
+}
+
+void DiskModel::jacobian_cells(double t, std::span<const double> y,
+                               std::span<double> values, int lo, int hi) const {
+  // The modules write the columns of the cells lo - 2 .. hi + 1 (a face reads two cells
+  // each side) and of the globals: those are cleared, in the pattern's column order.
+  const int n = layout_->n_cells();
+  const auto cp = pattern_.col_ptr();
+  std::fill(values.begin() + cp[layout_->index(std::max(0, lo - 2), 0)],
+            values.begin() + cp[layout_->index(std::min(n, hi + 2), 0)], 0.0);
+  std::fill(values.begin() + cp[layout_->index(n, 0)], values.end(), 0.0);
+  JacobianValues jac(pattern_, values);
+  for (const auto& m : modules_)
+    if (!active_ || active_(m->name())) m->add_jacobian_cells(t, y, jac, lo, hi);
+}
+
 std::string DiskModel::describe(long index, std::span<const double> y) const noexcept {
   try {
     std::string s = layout_->describe(index);

@@ -26,6 +26,23 @@ class PhysicsModule {
   //! J += dF/dy (t, y), exact.
   virtual void add_jacobian(double t, std::span<const double> y,
                             JacobianValues& jac) const = 0;
+
+  //! add_rhs() on the rows of the cells [lo, hi) and of the global variables fed through
+  //! the faces lo..hi; rows of other cells may be written too (the default computes them
+  //! all). For integrators that step part of the grid on its own (block-local time
+  //! stepping, tests/bench/bench_lts.cpp); a module with local or face-by-face terms
+  //! overrides it to skip the rest.
+  virtual void add_rhs_cells(double t, std::span<const double> y, std::span<double> ydot,
+                             int lo, int hi) const {
+    (void)lo, (void)hi;
+    add_rhs(t, y, ydot);
+  }
+  //! add_jacobian() on the same rows as add_rhs_cells().
+  virtual void add_jacobian_cells(double t, std::span<const double> y,
+                                  JacobianValues& jac, int lo, int hi) const {
+    (void)lo, (void)hi;
+    add_jacobian(t, y, jac);
+  }
 };
 
 }  // namespace panoptic
