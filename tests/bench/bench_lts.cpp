@@ -19,14 +19,22 @@
 // computed by each of them from its own view of the other, so the scheme is not
 // conservative; the mass defect is reported (a refluxing correction would fix it).
 //
-// Each block's right-hand side is evaluated by the whole-disk model on a whole-disk
-// vector (the modules have no cell-range interface), so the wall time here is not that
-// of such a scheme; the cost is reported as block steps and cell-steps (steps x cells),
-// to be set against the coupled run's cell-steps (README: ~1.4 us per cell-step).
+// With --chase the inner neighbour is not frozen: a block sees it move linearly over
+// the macro step, from where it saw it at the end of the last one (no jump: the block's
+// BDF history stays valid) to the neighbour's state at T0 extrapolated along its last
+// macro step's secant; with --reset-overlap the overlap cells are set to their owners'
+// state at every snapshot, where the blocks restart anyway.
+//
+// Each block's right-hand side and Jacobian are those of the whole-disk model on the
+// block's cells only (DiskModel::rhs_cells / jacobian_cells, which evaluate the modules
+// on a cell range; checked against the whole model's rows for every block at set-up), so
+// the wall time is that of the scheme, with the bookkeeping of this prototype (dense
+// output of every step, ghost interpolation). The cost is also reported as block steps
+// and cell-steps (steps x cells) against the coupled run's.
 //
 // Usage: build/tests/bench_lts [--block B ...] [--overlap V ...] [--sub K ...]
-//            [--tol-scale X] [--overlap-atol F] [--extrapolate] [--profile]
-//            [--set key=value ...]
+//            [--tol-scale X] [--overlap-atol F] [--extrapolate] [--chase]
+//            [--reset-overlap] [--profile] [--set key=value ...]
 // (measurements: README "Performance" and tests/bench/results/performance_log.md)
 //   --block B:     cells per block (16 by default); every combination of B, V, K is run
 //   --overlap V:   each block also integrates the V cells inside it and discards them, so
@@ -39,6 +47,20 @@
 //   --overlap-atol F: the overlap cells' atol multiplied by F (they are discarded)
 //   --extrapolate: the inner neighbour extrapolated linearly from its last step instead
 //                  of frozen at the macro step's start
+//   --chase:       the inner neighbour continuous in time, moving towards an
+//                  extrapolation (above)
+//   --reset-overlap: the overlap cells set to their owners' state at every snapshot
+//   --book-faces:  each face between two blocks booked in both blocks' views (the mass
+//                  its inner cell gains through it), and the largest defect between the
+//                  two over a snapshot interval reported
+//   --reflux:      that defect (of every transported variable) also put into the inner
+//                  cell at every snapshot, which would conserve mass as the coupled run
+//                  does
+//   --flux-coupling: a block's outermost cell receives through its outer face not what
+//                  the block computes there from its ghosts, but what the outer block
+//                  booked through that face (the time derivative of that booking's dense
+//                  output): both blocks then agree on the face up to the integration
+//                  error of the bookings (implies --book-faces)
 //   --profile:     cell-steps per snapshot interval, coupled and blocks
 #include <algorithm>
 #include <chrono>
@@ -47,7 +69,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -88,6 +112,20 @@ struct History {
     const std::size_t m = t.size();
     return y[(m - 1) * n + k] + dy[(m - 1) * n + k] * (tq - t.back());
   }
+  //! Time derivative of the cubic Hermite interpolant of component k at time tq (the
+  //! recorded derivative outside the records).
+  double rate_at(double tq, int k) const {
+    const std::size_t m = t.size();
+    if (m == 1 || tq <= t.front()) return dy[k];
+    if (tq >= t.back()) return dy[(m - 1) * n + k];
+    const std::size_t i =
+        static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), tq) - t.begin()) -
+        1;
+    const double h = t[i + 1] - t[i], s = (tq - t[i]) / h;
+    const std::size_t a = i * n + k, b = (i + 1) * n + k;
+    return ((6 * s * s - 6 * s) * y[a] + (-6 * s * s + 6 * s) * y[b]) / h +
+           (3 * s * s - 4 * s + 1) * dy[a] + (3 * s * s - 2 * s) * dy[b];
+  }
   //! Cubic Hermite interpolation of component k at time tq.
   double at(double tq, int k) const {
     const std::size_t m = t.size();
@@ -110,8 +148,17 @@ class Coupler;
 //! the neighbours' cells filled in by the Coupler.
 class BlockView : public PhysicsModule {
  public:
+  //! [eval_lo, eval_hi): the cells whose rows (and faces' globals) the block needs.
   BlockView(const DiskModel& full, const Coupler& coupler, int block,
-            std::vector<long> full_index);
+            std::vector<long> full_index, int eval_lo, int eval_hi);
+  //! --book-faces: books, as the block's variables `compact` (past its whole-disk ones),
+  //! what cell face - 1 gains of each transported variable `slots` through face `face`
+  //! in the block's view (rows of DiskModel::rhs_cells on the empty range [face, face):
+  //! that face alone). `prescribed` (--flux-coupling, the block's outer face): the
+  //! block's cell face - 1 receives instead what the outer block booked through that face
+  //! (the time derivative of its dense output), and books that.
+  void add_booking(int face, const std::vector<int>& slots,
+                   const std::vector<long>& compact, const Grid& grid, bool prescribed);
   std::string_view name() const override { return "block"; }
   void declare_pattern(PatternBuilder& p) const override {
     for (const auto& e : entries_) p.add(e.row, e.col);
@@ -122,15 +169,30 @@ class BlockView : public PhysicsModule {
                     JacobianValues& jac) const override;
   //! The whole-disk vector the block's components are written into (others: at T0).
   std::vector<double>& base() { return y_full_; }
+  int eval_lo() const { return eval_lo_; }
+  int eval_hi() const { return eval_hi_; }
 
  private:
   void fill(double t, std::span<const double> y) const;
   struct Entry {
     long row, col, pos;
   };
+  struct Booking {
+    int face;
+    double area;               // of cell face - 1 [cm^2]
+    bool prescribed;           // fed by the outer block's booking
+    std::vector<long> row;     // per slot: whole-disk row of cell face - 1
+    std::vector<long> booked;  // per slot: the booked variable
+    std::vector<long> own;     // per slot: the block's row of cell face - 1 (prescribed)
+    //! per slot: the face's Jacobian entries of row[k] to take over (compact row: the
+    //! booked variable, or with `prescribed` the own row, whose face terms are removed)
+    std::vector<std::vector<Entry>> d;
+  };
+  std::vector<Booking> bookings_;
+  mutable std::vector<double> face_ydot_, face_jac_;
   const DiskModel& full_;
   const Coupler& coupler_;
-  int block_;
+  int block_, eval_lo_, eval_hi_;
   std::vector<long> full_index_;
   std::vector<Entry> entries_;
   mutable std::vector<double> y_full_, ydot_full_, jac_full_;
@@ -145,17 +207,39 @@ struct Block {
   std::unique_ptr<CvodeIntegrator> cvode;
   History hist;
   bool advanced = false;  // integrated over the current macro step already
+  // --chase: the inner ghost cells' (ilo - 2, ilo - 1) values at the macro step's start
+  // and end, between which the block sees them move linearly (nv per cell, -1 unused)
+  std::vector<double> ghost_start, ghost_target;
+  // --book-faces: what cell lo - 1 gains through face lo and cell hi - 1 through face
+  // hi of each transported variable, booked in this block's view (the block's variables;
+  // empty: none)
+  std::vector<long> q_lo, q_hi;
+  // their values at the last snapshot (they run on through the restarts, so that the
+  // dense output the inner block reads under --flux-coupling has no jump)
+  std::vector<double> q_lo_start, q_hi_start;
 };
+
+void view_check(const DiskModel& full, const Block& b, const BlockView& view,
+                const std::vector<double>& y0);
 
 class Coupler {
  public:
   Coupler(Simulation& sim, int block_size, int overlap, double tol_scale,
-          double overlap_atol_factor, bool extrapolate);
+          double overlap_atol_factor, bool extrapolate, bool chase, bool reset_overlap,
+          bool reflux, bool book_faces, bool flux_coupling);
   //! Integrates the scene to t_end with K macro steps per snapshot interval; returns
   //! the whole-disk state at t_end.
   std::vector<double> run(int sub);
   //! Writes the neighbours' cells of block b at time t into y_full.
   void fill_ghosts(int b, double t, std::span<double> y_full) const;
+  //! --flux-coupling: the rate [g s^-1, or its log-moment's] at which block b's cell
+  //! hi - 1 gains transported variable k through face hi, as its outer block booked it.
+  //! None before the outer block has a dense output (the blocks' set-up).
+  std::optional<double> prescribed_gain(int b, int k, double t) const {
+    const Block& o = blocks_[owner_[blocks_[b].hi]];
+    if (o.hist.t.empty() || o.q_lo.empty()) return std::nullopt;
+    return o.hist.rate_at(t, static_cast<int>(o.q_lo[k]));
+  }
   //! A solver counter (&SolverStats::nst, nfe, nje) summed over the blocks, each
   //! weighted by its cells (overlap included) or, with per_cell = false, not.
   long total(long SolverStats::*counter, bool per_cell = true) const;
@@ -163,6 +247,8 @@ class Coupler {
   int block_cells(int b) const { return blocks_[b].hi - blocks_[b].ilo; }
   //! Per snapshot interval: every block's cumulative step count at its end.
   std::vector<std::vector<long>> interval_steps_;
+  //! The blocks' callback wall times, summed.
+  CallbackTimes times_;
 
  private:
   std::vector<double> gather() const;
@@ -172,12 +258,35 @@ class Coupler {
   std::vector<Block> blocks_;
   std::vector<int> owner_;  // per cell: its block
   std::vector<double> base_;
-  bool extrapolate_ = false;  // inner neighbours: extrapolated from T0, not frozen
+  bool extrapolate_ = false;    // inner neighbours: extrapolated from T0, not frozen
+  bool chase_ = false;          // inner neighbours: continuous, towards an extrapolation
+  bool reset_overlap_ = false;  // overlap cells set to their owners' at every snapshot
+  bool reflux_ = false;         // each face's mass defect between its two blocks put back
+  bool book_faces_ = false;  // the faces' mass booked in both views (reflux: also used)
+  bool flux_coupling_ = false;  // a block's outer face fed by the outer block's booking
+  std::vector<int> tslots_;     // the transported cell variables (sigma_d first)
+  void reflux();
+
+ public:
+  //! --book-faces/--reflux: the largest defect of a face over a snapshot interval (the
+  //! mass the outer block sent minus what the inner one received) as a share of the
+  //! disk's dust mass, its inner cell, and the start of its last macro step [s]; and the
+  //! sum of all of them (each a share of the disk's dust mass then)
+  double worst_defect_ = 0.0, worst_defect_t_ = 0.0, sum_defect_ = 0.0;
+  int worst_defect_cell_ = -1;
+  void set_ghost_targets(double t0, double t1, bool fresh);
+  std::vector<double> prev_base_;  // the state at the previous macro step's start
+  double t_prev_ = -1.0, t0_ = 0.0, t1_ = 0.0;
 };
 
 BlockView::BlockView(const DiskModel& full, const Coupler& coupler, int block,
-                     std::vector<long> full_index)
-    : full_(full), coupler_(coupler), block_(block), full_index_(std::move(full_index)) {
+                     std::vector<long> full_index, int eval_lo, int eval_hi)
+    : full_(full),
+      coupler_(coupler),
+      block_(block),
+      eval_lo_(eval_lo),
+      eval_hi_(eval_hi),
+      full_index_(std::move(full_index)) {
   const long n = full.layout().size();
   std::vector<long> compact(n, -1);
   for (std::size_t k = 0; k < full_index_.size(); ++k)
@@ -194,6 +303,36 @@ BlockView::BlockView(const DiskModel& full, const Coupler& coupler, int block,
   jac_full_.assign(full.pattern().nnz(), 0.0);
 }
 
+void BlockView::add_booking(int face, const std::vector<int>& slots,
+                            const std::vector<long>& compact, const Grid& grid,
+                            bool prescribed) {
+  const StateLayout& L = full_.layout();
+  Booking bk{face, grid.area(face - 1), prescribed, {}, compact, {}, {}};
+  std::vector<long> compact_of(L.size(), -1);
+  for (std::size_t k = 0; k < full_index_.size(); ++k)
+    compact_of[full_index_[k]] = static_cast<long>(k);
+  const auto cp = full_.pattern().col_ptr();
+  const auto ri = full_.pattern().row_index();
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    const long row = L.index(face - 1, slots[k]);
+    bk.row.push_back(row);
+    bk.own.push_back(compact_of[row]);
+    if (prescribed && compact_of[row] < 0)
+      throw std::logic_error("bench_lts: a prescribed face outside its block");
+    std::vector<Entry> d;
+    for (long c = 0; c < L.size(); ++c)
+      for (long p = cp[c]; p < cp[c + 1]; ++p)
+        if (ri[p] == row && compact_of[c] >= 0)
+          d.push_back({prescribed ? compact_of[row] : compact[k], compact_of[c], p});
+    if (!prescribed)  // the booked rows' pattern (the own rows have theirs)
+      for (const auto& e : d) entries_.push_back({e.row, e.col, -1});
+    bk.d.push_back(std::move(d));
+  }
+  bookings_.push_back(std::move(bk));
+  face_ydot_.assign(L.size(), 0.0);
+  face_jac_.assign(full_.pattern().nnz(), 0.0);
+}
+
 void BlockView::fill(double t, std::span<const double> y) const {
   for (std::size_t k = 0; k < full_index_.size(); ++k) y_full_[full_index_[k]] = y[k];
   coupler_.fill_ghosts(block_, t, y_full_);
@@ -202,24 +341,52 @@ void BlockView::fill(double t, std::span<const double> y) const {
 void BlockView::add_rhs(double t, std::span<const double> y,
                         std::span<double> ydot) const {
   fill(t, y);
-  full_.rhs(t, y_full_, ydot_full_);
+  full_.rhs_cells(t, y_full_, ydot_full_, eval_lo(), eval_hi());
   for (std::size_t k = 0; k < full_index_.size(); ++k)
     ydot[k] += ydot_full_[full_index_[k]];
+  for (const Booking& bk : bookings_) {
+    full_.rhs_cells(t, y_full_, face_ydot_, bk.face, bk.face);
+    for (std::size_t k = 0; k < bk.row.size(); ++k) {
+      const auto gain = bk.prescribed
+                            ? coupler_.prescribed_gain(block_, static_cast<int>(k), t)
+                            : std::nullopt;
+      if (!gain) {
+        ydot[bk.booked[k]] += face_ydot_[bk.row[k]] * bk.area;
+        continue;
+      }
+      ydot[bk.own[k]] += *gain / bk.area - face_ydot_[bk.row[k]];
+      ydot[bk.booked[k]] += *gain;
+    }
+  }
 }
 
 void BlockView::add_jacobian(double t, std::span<const double> y,
                              JacobianValues& jac) const {
   fill(t, y);
-  full_.jacobian(t, y_full_, jac_full_);
-  for (const auto& e : entries_) jac.add(e.row, e.col, jac_full_[e.pos]);
+  full_.jacobian_cells(t, y_full_, jac_full_, eval_lo(), eval_hi());
+  for (const auto& e : entries_)
+    if (e.pos >= 0) jac.add(e.row, e.col, jac_full_[e.pos]);
+  for (const Booking& bk : bookings_) {
+    full_.jacobian_cells(t, y_full_, face_jac_, bk.face, bk.face);
+    for (const auto& d : bk.d)
+      for (const auto& e : d)
+        jac.add(e.row, e.col,
+                bk.prescribed ? -face_jac_[e.pos] : face_jac_[e.pos] * bk.area);
+  }
 }
 
 Coupler::Coupler(Simulation& sim, int block_size, int overlap, double tol_scale,
-                 double overlap_atol_factor, bool extrapolate)
+                 double overlap_atol_factor, bool extrapolate, bool chase,
+                 bool reset_overlap, bool reflux, bool book_faces, bool flux_coupling)
     : sim_(sim),
       layout_(sim.model().layout()),
       nv_(layout_.n_cell_vars()),
-      extrapolate_(extrapolate) {
+      extrapolate_(extrapolate),
+      chase_(chase),
+      reset_overlap_(reset_overlap),
+      reflux_(reflux),
+      book_faces_(reflux || book_faces || flux_coupling),
+      flux_coupling_(flux_coupling) {
   const int n = layout_.n_cells();
   const DiskModel& full = sim.model();
   // Each booked global belongs to the block that owns the cell its face takes mass
@@ -239,6 +406,8 @@ Coupler::Coupler(Simulation& sim, int block_size, int overlap, double tol_scale,
   }
   global_cell[sim.transport().m_out_slot()] = 0;
   const IntegratorOptions full_opt = sim.integrator_options();
+  for (const char* name : {"sigma_d", "q_m", "q_phi"})
+    if (const auto slot = layout_.find_cell_var(name)) tslots_.push_back(*slot);
   const std::vector<double> y0 = sim.initial_state();
   base_ = y0;
   owner_.assign(n, 0);
@@ -261,9 +430,27 @@ Coupler::Coupler(Simulation& sim, int block_size, int overlap, double tol_scale,
         bl->add_global_var(layout_.global_var(g));
         b.full_index.push_back(layout_.global_index(g));
       }
+    long n_comp = static_cast<long>(b.full_index.size());
+    if (book_faces_) {
+      // booked quadratures: read by no right-hand side, out of the error test
+      const VarInfo booked{"face_gain", "g",   "gained through a block face",
+                           1.0,         false, false};
+      for (std::size_t k = 0; k < tslots_.size() && b.lo > 0; ++k)
+        bl->add_global_var(booked), b.q_lo.push_back(n_comp++);
+      for (std::size_t k = 0; k < tslots_.size() && b.hi < n; ++k)
+        bl->add_global_var(booked), b.q_hi.push_back(n_comp++);
+    }
     bl->freeze();
+    // Its own cells and overlap, and the face inside its owned cells, which feeds the
+    // globals it owns with no overlap (DiskModel::rhs_cells: cells [lo, hi) read the
+    // faces lo..hi).
     auto view =
-        std::make_unique<BlockView>(full, *this, static_cast<int>(bi), b.full_index);
+        std::make_unique<BlockView>(full, *this, static_cast<int>(bi), b.full_index,
+                                    std::max(0, std::min(b.ilo, b.lo - 1)), b.hi);
+    view_check(full, b, *view, y0);
+    if (!b.q_lo.empty()) view->add_booking(b.lo, tslots_, b.q_lo, sim.grid(), false);
+    if (!b.q_hi.empty())
+      view->add_booking(b.hi, tslots_, b.q_hi, sim.grid(), flux_coupling_);
     b.view = view.get();
     std::vector<std::unique_ptr<PhysicsModule>> mods;
     mods.push_back(std::move(view));
@@ -282,13 +469,89 @@ Coupler::Coupler(Simulation& sim, int block_size, int overlap, double tol_scale,
     }
     std::vector<double> yb;
     for (long k : b.full_index) yb.push_back(y0[k]);
+    while (static_cast<long>(yb.size()) < n_comp) {  // the booked face masses
+      yb.push_back(0.0);
+      opt.atol.push_back(1e30);
+      if (!opt.constraints.empty()) opt.constraints.push_back(0.0);
+    }
     b.view->base() = base_;
     b.cvode = std::make_unique<CvodeIntegrator>(*b.model, 0.0, yb, opt);
+    b.cvode->set_profile(&times_);
+    b.q_lo_start.assign(b.q_lo.size(), 0.0);
+    b.q_hi_start.assign(b.q_hi.size(), 0.0);
     b.hist.n = static_cast<int>(yb.size());
     std::vector<double> d(yb.size());
     b.model->rhs(0.0, yb, d);
     b.hist.push(0.0, yb, d);
   }
+}
+
+// --chase: over a macro step [T0, T1] a block sees each inner ghost component move
+// linearly from where it saw it at the end of the last macro step (continuity: its BDF
+// history sees no jump) to the owner's state at T0 extrapolated to T1 along the secant
+// of the owner's last macro step (the change limited to half the value); at a snapshot,
+// where every block restarts anyway, the start is the owner's state.
+void Coupler::set_ghost_targets(double t0, double t1, bool fresh) {
+  const bool have_prev = !prev_base_.empty() && t_prev_ < t0 && t_prev_ >= 0.0;
+  for (Block& b : blocks_) {
+    b.ghost_start.assign(2 * nv_, -1.0);
+    if (b.ghost_target.empty()) b.ghost_target.assign(2 * nv_, 0.0);
+    for (int j = 0; j < 2; ++j) {
+      const int c = b.ilo - 2 + j;
+      if (c < 0) continue;
+      for (int s = 0; s < nv_; ++s) {
+        const long k = layout_.index(c, s);
+        const double y0 = base_[k];
+        b.ghost_start[j * nv_ + s] = fresh ? y0 : b.ghost_target[j * nv_ + s];
+        double target = y0;
+        if (have_prev) {
+          const double d = (y0 - prev_base_[k]) * (t1 - t0) / (t0 - t_prev_);
+          const double lim = 0.5 * std::abs(y0);
+          target = y0 + std::clamp(d, -lim, lim);
+        }
+        b.ghost_target[j * nv_ + s] = target;
+      }
+    }
+  }
+  t0_ = t0;
+  t1_ = t1;
+}
+
+//! The block's rows from DiskModel::rhs_cells/jacobian_cells equal the whole model's
+//! (at the initial state and a state with growth under way): a block evaluates only its
+//! cells, and must still get every row it owns.
+void view_check(const DiskModel& full, const Block& b, const BlockView& view,
+                const std::vector<double>& y0) {
+  std::vector<double> y = y0;
+  for (std::size_t k = 0; k < y.size(); ++k)  // a state away from the smooth profile
+    y[k] *= 1.0 + 0.3 * std::sin(1.7 * double(k));
+  std::vector<double> f(y.size()), fc(y.size());
+  std::vector<double> j(full.pattern().nnz()), jc(j.size());
+  full.rhs(0.0, y, f);
+  full.rhs_cells(0.0, y, fc, view.eval_lo(), view.eval_hi());
+  full.jacobian(0.0, y, j);
+  full.jacobian_cells(0.0, y, jc, view.eval_lo(), view.eval_hi());
+  std::vector<char> mine(y.size(), 0);
+  for (long k : b.full_index) {
+    mine[k] = 1;
+    if (f[k] != fc[k]) {
+      std::fprintf(stderr,
+                   "bench_lts: block of cells [%d, %d) (evaluated on [%d, %d)): row of "
+                   "%s is %.17g, the whole model's %.17g\n",
+                   b.lo, b.hi, view.eval_lo(), view.eval_hi(),
+                   full.layout().describe(k).c_str(), fc[k], f[k]);
+      std::exit(1);
+    }
+  }
+  const auto cp = full.pattern().col_ptr();
+  const auto ri = full.pattern().row_index();
+  for (long c = 0; c < static_cast<long>(y.size()); ++c)
+    for (long p = cp[c]; p < cp[c + 1]; ++p)
+      if (mine[ri[p]] && mine[c] && j[p] != jc[p]) {
+        std::fprintf(stderr,
+                     "bench_lts: block Jacobian differs from the whole model's\n");
+        std::exit(1);
+      }
 }
 
 void Coupler::fill_ghosts(int bi, double t, std::span<double> y_full) const {
@@ -297,11 +560,52 @@ void Coupler::fill_ghosts(int bi, double t, std::span<double> y_full) const {
   for (int c : {b.ilo - 2, b.ilo - 1, b.hi, b.hi + 1}) {
     if (c < 0 || c >= n) continue;
     const Block& o = blocks_[owner_[c]];
+    if (chase_ && c < b.ilo && !o.advanced && !b.ghost_start.empty()) {
+      const double w = std::clamp((t - t0_) / (t1_ - t0_), 0.0, 1.0);
+      const int j = c - (b.ilo - 2);
+      for (int s = 0; s < nv_; ++s)
+        y_full[layout_.index(c, s)] =
+            (1.0 - w) * b.ghost_start[j * nv_ + s] + w * b.ghost_target[j * nv_ + s];
+      continue;
+    }
     for (int s = 0; s < nv_; ++s)
       y_full[layout_.index(c, s)] = o.advanced ? o.hist.at(t, (c - o.ilo) * nv_ + s)
                                     : extrapolate_ && !o.hist.t.empty()
                                         ? o.hist.extrapolate(t, (c - o.ilo) * nv_ + s)
                                         : base_[layout_.index(c, s)];
+  }
+}
+
+// --reflux, at a snapshot (where the blocks restart): the dust mass that crossed each
+// face between two blocks since the last snapshot, as the outer block integrated it,
+// minus what the inner block's cell received in its own view, is put into that cell,
+// with its m and phi kept (the log-moments scaled with Sigma_d): mass is then conserved
+// at every snapshot as in the coupled run, and each face's flux is the outer block's
+// (the upwind side of the drift).
+void Coupler::reflux() {
+  const int sd = tslots_[0];
+  double disk_dust = 0.0;  // [g]
+  for (int i = 0; i < layout_.n_cells(); ++i)
+    disk_dust += base_[layout_.index(i, sd)] * sim_.grid().area(i);
+  for (Block& inner : blocks_) {
+    if (inner.q_hi.empty()) continue;
+    const Block& outer = blocks_[owner_[inner.hi]];
+    const int c = inner.hi - 1;
+    for (std::size_t k = 0; k < tslots_.size(); ++k) {
+      const double defect =  // [g], or the log-moment's
+          (outer.cvode->state()[outer.q_lo[k]] - outer.q_lo_start[k]) -
+          (inner.cvode->state()[inner.q_hi[k]] - inner.q_hi_start[k]);
+      if (k == 0) {
+        const double share = std::abs(defect) / disk_dust;
+        sum_defect_ += share;
+        if (share > worst_defect_) {
+          worst_defect_ = share;
+          worst_defect_cell_ = c;
+          worst_defect_t_ = t_prev_;
+        }
+      }
+      if (reflux_) base_[layout_.index(c, tslots_[k])] += defect / sim_.grid().area(c);
+    }
   }
 }
 
@@ -321,6 +625,7 @@ std::vector<double> Coupler::run(int sub) {
   const auto times = sim_.output_times();
   for (std::size_t k = 1; k < times.size(); ++k) {
     const double ta = times[k - 1], tb = times[k];
+    double b_t0 = ta;
     for (int j = 1; j <= sub; ++j) {
       const double t1 = j == sub   ? tb
                         : ta > 0.0 ? ta * std::pow(tb / ta, double(j) / sub)
@@ -329,23 +634,52 @@ std::vector<double> Coupler::run(int sub) {
         b.advanced = false;
         std::copy(base_.begin(), base_.end(), b.view->base().begin());
       }
+      const double t0 = j == 1 ? ta : b_t0;
+      if (chase_) set_ghost_targets(t0, t1, j == 1);
       for (int bi = n_blocks() - 1; bi >= 0; --bi) {
         Block& b = blocks_[bi];
         b.hist.keep_last();
-        std::vector<double> d(b.full_index.size());
-        b.cvode->advance_to(t1, [&](double t, long) {
-          b.cvode->derivative(d);
-          b.hist.push(t, b.cvode->state(), d);
-        });
+        std::vector<double> d(b.cvode->state().size());
+        try {
+          b.cvode->advance_to(t1, [&](double t, long) {
+            b.cvode->derivative(d);
+            b.hist.push(t, b.cvode->state(), d);
+          });
+        } catch (const std::exception& e) {
+          throw std::runtime_error(std::string(e.what()) + " (block of cells [" +
+                                   std::to_string(b.lo) + ", " + std::to_string(b.hi) +
+                                   "))");
+        }
         b.advanced = true;
       }
+      prev_base_ = base_;
+      t_prev_ = t0;
+      b_t0 = t1;
       base_ = gather();
     }
     std::vector<long> per_block;
     for (const Block& b : blocks_) per_block.push_back(b.cvode->stats().nst);
     interval_steps_.push_back(per_block);
+    if (book_faces_) {
+      reflux();
+      for (Block& b : blocks_) {
+        b.q_lo_start.clear();
+        b.q_hi_start.clear();
+        for (long q : b.q_lo) b.q_lo_start.push_back(b.cvode->state()[q]);
+        for (long q : b.q_hi) b.q_hi_start.push_back(b.cvode->state()[q]);
+      }
+    }
     for (Block& b : blocks_) {
-      const std::vector<double> yb(b.cvode->state().begin(), b.cvode->state().end());
+      std::vector<double> yb(b.cvode->state().begin(), b.cvode->state().end());
+      for (std::size_t k = 0; k < b.full_index.size(); ++k) {  // refluxed owned cells
+        const int cell = layout_.cell_of(b.full_index[k]);
+        if (cell >= b.lo) yb[k] = base_[b.full_index[k]];
+      }
+      if (reset_overlap_)
+        for (std::size_t k = 0; k < b.full_index.size(); ++k) {
+          const int cell = layout_.cell_of(b.full_index[k]);
+          if (cell >= 0 && cell < b.lo) yb[k] = base_[b.full_index[k]];
+        }
       b.cvode->reinit(tb, yb);
     }
   }
@@ -359,6 +693,16 @@ long Coupler::total(long SolverStats::*counter, bool per_cell) const {
   return s;
 }
 
+void print_defect(const Coupler& lts) {
+  if (lts.worst_defect_cell_ < 0) return;
+  std::printf(
+      "  (largest face defect over a snapshot interval, the mass the outer block sent "
+      "less what the inner one received: %.3g of the disk's dust mass, into cell %d, in "
+      "the interval ending after %.4g yr; the sum of all: %.3g)\n",
+      lts.worst_defect_, lts.worst_defect_cell_, lts.worst_defect_t_ / units::kYr,
+      lts.sum_defect_);
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -368,7 +712,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 int main(int argc, char** argv) {
   std::vector<int> blocks, subs, overlaps;
   double tol_scale = 1.0, overlap_atol = 1.0;
-  bool extrapolate = false, profile = false;
+  bool extrapolate = false, profile = false, chase = false, reset_overlap = false,
+       reflux = false, book_faces = false, flux_coupling = false;
   std::vector<std::string> sets;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--block") && i + 1 < argc) {
@@ -385,6 +730,16 @@ int main(int argc, char** argv) {
       profile = true;
     } else if (!std::strcmp(argv[i], "--extrapolate")) {
       extrapolate = true;
+    } else if (!std::strcmp(argv[i], "--chase")) {
+      chase = true;
+    } else if (!std::strcmp(argv[i], "--reset-overlap")) {
+      reset_overlap = true;
+    } else if (!std::strcmp(argv[i], "--reflux")) {
+      reflux = true;
+    } else if (!std::strcmp(argv[i], "--book-faces")) {
+      book_faces = true;
+    } else if (!std::strcmp(argv[i], "--flux-coupling")) {
+      flux_coupling = true;
     } else if (!std::strcmp(argv[i], "--set") && i + 1 < argc) {
       sets.emplace_back(argv[++i]);
     } else {
@@ -407,6 +762,8 @@ int main(int argc, char** argv) {
   auto t0 = std::chrono::steady_clock::now();
   CvodeIntegrator cvode(sim.model(), times.front(), sim.initial_state(),
                         sim.integrator_options());
+  CallbackTimes ref_times;
+  cvode.set_profile(&ref_times);
   std::vector<long> ref_steps;  // cumulative, at the end of every snapshot interval
   for (std::size_t k = 1; k < times.size(); ++k) {
     cvode.advance_to(times[k]);
@@ -415,6 +772,13 @@ int main(int argc, char** argv) {
     ref_steps.push_back(cvode.stats().nst);
   }
   const double wall_ref = seconds_since(t0);
+  std::printf(
+      "coupled run's wall in RHS %.3f s, Jacobian %.3f s, KLU set-up %.3f s, solve %.3f "
+      "s; "
+      "the rest %.3f s\n",
+      ref_times.rhs_s, ref_times.jac_s, ref_times.lsetup_s, ref_times.lsolve_s,
+      wall_ref - ref_times.rhs_s - ref_times.jac_s - ref_times.lsetup_s -
+          ref_times.lsolve_s);
   const FiducialOutcome ref = measure_outcome(sim, cvode.state());
   const long ref_cell_steps = cvode.stats().nst * n;
   std::printf("params/fiducial.toml to %g yr, %d cells", cfg.real("output.t_end_yr"), n);
@@ -436,13 +800,15 @@ int main(int argc, char** argv) {
     for (int ov : overlaps)
       for (int sub : subs) {
         t0 = std::chrono::steady_clock::now();
-        Coupler lts(sim, bsize, ov, tol_scale, overlap_atol, extrapolate);
+        Coupler lts(sim, bsize, ov, tol_scale, overlap_atol, extrapolate, chase,
+                    reset_overlap, reflux, book_faces, flux_coupling);
         std::vector<double> y;
         try {
           y = lts.run(sub);
         } catch (const std::exception& e) {
           std::printf("| %d | %d | %d | %d | %g | failed: %s |\n", bsize, ov,
                       lts.n_blocks(), sub, tol_scale, e.what());
+          print_defect(lts);
           std::fflush(stdout);
           continue;
         }
@@ -459,6 +825,23 @@ int main(int argc, char** argv) {
             std::abs(o.m_pl / ref.m_pl - 1.0),
             std::abs(o.m_peb_snow / ref.m_peb_snow - 1.0),
             sigma_l1(g, o.sigma_d, ref.sigma_d), o.budget, wall);
+        const CallbackTimes& tm = lts.times_;
+        std::printf(
+            "  (blocks' wall in RHS %.3f s, Jacobian %.3f s, KLU set-up %.3f s, solve "
+            "%.3f "
+            "s; the rest %.3f s)\n",
+            tm.rhs_s, tm.jac_s, tm.lsetup_s, tm.lsolve_s,
+            wall - tm.rhs_s - tm.jac_s - tm.lsetup_s - tm.lsolve_s);
+        std::printf(
+            "  (failures, per block and in the coupled run: error tests %.1f / %ld, "
+            "Newton %.1f / %ld; Jacobians %.1f / %ld)\n",
+            double(lts.total(&SolverStats::netf, false)) / lts.n_blocks(),
+            cvode.stats().netf,
+            double(lts.total(&SolverStats::nncf, false)) / lts.n_blocks(),
+            cvode.stats().nncf,
+            double(lts.total(&SolverStats::nje, false)) / lts.n_blocks(),
+            cvode.stats().nje);
+        print_defect(lts);
         if (profile) {
           std::printf(
               "\n  | interval ends [yr] | coupled cell-steps | blocks' cell-steps | most "
