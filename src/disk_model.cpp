@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <stdexcept>
+#include <string>
 
 namespace panoptic {
 namespace {
@@ -13,6 +15,13 @@ SparsityPattern build_pattern(
   PatternBuilder builder(layout.size());
   for (const auto& m : modules) m->declare_pattern(builder);
   return SparsityPattern(builder);
+}
+
+void check_range(int lo, int hi, int n) {
+  if (lo < 0 || hi > n || lo > hi)
+    throw std::invalid_argument("DiskModel: cell range [" + std::to_string(lo) + ", " +
+                                std::to_string(hi) + ") is not within [0, " +
+                                std::to_string(n) + ")");
 }
 
 //! Index of the first non-finite entry, or -1.
@@ -46,9 +55,11 @@ void DiskModel::jacobian(double t, std::span<const double> y,
 
 void DiskModel::rhs_cells(double t, std::span<const double> y, std::span<double> ydot,
                           int lo, int hi) const {
-  // The rows the modules may write besides their own (the faces' other cells) are
-  // cleared too, so that nothing accumulates there from call to call.
+  // The rows the modules' range loops write besides their own (the faces' other cells)
+  // are cleared too; a module without a range loop (the default) writes every row, and
+  // the rows outside [lo - 1, hi + 1) then hold sums of earlier calls: undefined.
   const int n = layout_->n_cells();
+  check_range(lo, hi, n);
   std::fill(ydot.begin() + layout_->index(std::max(0, lo - 1), 0),
             ydot.begin() + layout_->index(std::min(n, hi + 1), 0), 0.0);
   std::fill(ydot.begin() + layout_->index(n, 0), ydot.end(), 0.0);  // the globals
@@ -61,6 +72,7 @@ void DiskModel::jacobian_cells(double t, std::span<const double> y,
   // The modules write the columns of the cells lo - 2 .. hi + 1 (a face reads two cells
   // each side) and of the globals: those are cleared, in the pattern's column order.
   const int n = layout_->n_cells();
+  check_range(lo, hi, n);
   const auto cp = pattern_.col_ptr();
   std::fill(values.begin() + cp[layout_->index(std::max(0, lo - 2), 0)],
             values.begin() + cp[layout_->index(std::min(n, hi + 2), 0)], 0.0);

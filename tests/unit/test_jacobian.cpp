@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -444,4 +445,7 @@ TEST(DiskModelCells, RangeRowsEqualTheWholeModel) {
   // the range checks reach the booked globals (r_in's outflow, the snow line's
   // sublimation, the monitors), not only the whole-grid range
   EXPECT_GT(globals_checked, L.n_global_vars());
+  std::vector<double> f(y.size());
+  EXPECT_THROW(model.rhs_cells(0.0, y, f, 5, 4), std::invalid_argument);
+  EXPECT_THROW(model.rhs_cells(0.0, y, f, 0, n + 1), std::invalid_argument);
 }
