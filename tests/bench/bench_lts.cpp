@@ -34,7 +34,8 @@
 //
 // Usage: build/tests/bench_lts [--block B ...] [--overlap V ...] [--sub K ...]
 //            [--tol-scale X] [--overlap-atol F] [--extrapolate] [--chase]
-//            [--reset-overlap] [--profile] [--set key=value ...]
+//            [--reset-overlap] [--book-faces] [--reflux] [--flux-coupling] [--profile]
+//            [--set key=value ...]
 // (measurements: README "Performance" and tests/bench/results/performance_log.md)
 //   --block B:     cells per block (16 by default); every combination of B, V, K is run
 //   --overlap V:   each block also integrates the V cells inside it and discards them, so
@@ -74,6 +75,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "physics/dust_transport.hpp"
@@ -114,29 +116,25 @@ struct History {
   }
   //! Time derivative of the cubic Hermite interpolant of component k at time tq (the
   //! recorded derivative outside the records).
-  double rate_at(double tq, int k) const {
-    const std::size_t m = t.size();
-    if (m == 1 || tq <= t.front()) return dy[k];
-    if (tq >= t.back()) return dy[(m - 1) * n + k];
-    const std::size_t i =
-        static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), tq) - t.begin()) -
-        1;
-    const double h = t[i + 1] - t[i], s = (tq - t[i]) / h;
-    const std::size_t a = i * n + k, b = (i + 1) * n + k;
-    return ((6 * s * s - 6 * s) * y[a] + (-6 * s * s + 6 * s) * y[b]) / h +
-           (3 * s * s - 4 * s + 1) * dy[a] + (3 * s * s - 2 * s) * dy[b];
-  }
+  double rate_at(double tq, int k) const { return hermite(tq, k, true); }
   //! Cubic Hermite interpolation of component k at time tq.
-  double at(double tq, int k) const {
+  double at(double tq, int k) const { return hermite(tq, k, false); }
+
+ private:
+  double hermite(double tq, int k, bool rate) const {
     const std::size_t m = t.size();
-    if (m == 1 || tq <= t.front()) return y[k];
-    if (tq >= t.back()) return y[(m - 1) * n + k];
+    const std::vector<double>& end = rate ? dy : y;
+    if (m == 1 || tq <= t.front()) return end[k];
+    if (tq >= t.back()) return end[(m - 1) * n + k];
     const std::size_t i =
         static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), tq) - t.begin()) -
         1;
     const double h = t[i + 1] - t[i], s = (tq - t[i]) / h;
     const double s2 = s * s, s3 = s2 * s;
     const std::size_t a = i * n + k, b = (i + 1) * n + k;
+    if (rate)
+      return (6 * s2 - 6 * s) * (y[a] - y[b]) / h + (3 * s2 - 4 * s + 1) * dy[a] +
+             (3 * s2 - 2 * s) * dy[b];
     return (2 * s3 - 3 * s2 + 1) * y[a] + (s3 - 2 * s2 + s) * h * dy[a] +
            (-2 * s3 + 3 * s2) * y[b] + (s3 - s2) * h * dy[b];
   }
@@ -715,6 +713,18 @@ int main(int argc, char** argv) {
   bool extrapolate = false, profile = false, chase = false, reset_overlap = false,
        reflux = false, book_faces = false, flux_coupling = false;
   std::vector<std::string> sets;
+  const std::pair<const char*, bool*> switches[] = {{"--profile", &profile},
+                                                    {"--extrapolate", &extrapolate},
+                                                    {"--chase", &chase},
+                                                    {"--reset-overlap", &reset_overlap},
+                                                    {"--reflux", &reflux},
+                                                    {"--book-faces", &book_faces},
+                                                    {"--flux-coupling", &flux_coupling}};
+  const auto switch_named = [&](const char* arg) -> bool* {
+    for (const auto& [name, flag] : switches)
+      if (!std::strcmp(arg, name)) return flag;
+    return nullptr;
+  };
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--block") && i + 1 < argc) {
       blocks.push_back(std::atoi(argv[++i]));
@@ -726,26 +736,16 @@ int main(int argc, char** argv) {
       overlaps.push_back(std::atoi(argv[++i]));
     } else if (!std::strcmp(argv[i], "--overlap-atol") && i + 1 < argc) {
       overlap_atol = std::atof(argv[++i]);
-    } else if (!std::strcmp(argv[i], "--profile")) {
-      profile = true;
-    } else if (!std::strcmp(argv[i], "--extrapolate")) {
-      extrapolate = true;
-    } else if (!std::strcmp(argv[i], "--chase")) {
-      chase = true;
-    } else if (!std::strcmp(argv[i], "--reset-overlap")) {
-      reset_overlap = true;
-    } else if (!std::strcmp(argv[i], "--reflux")) {
-      reflux = true;
-    } else if (!std::strcmp(argv[i], "--book-faces")) {
-      book_faces = true;
-    } else if (!std::strcmp(argv[i], "--flux-coupling")) {
-      flux_coupling = true;
+    } else if (bool* flag = switch_named(argv[i])) {
+      *flag = true;
     } else if (!std::strcmp(argv[i], "--set") && i + 1 < argc) {
       sets.emplace_back(argv[++i]);
     } else {
       std::fprintf(stderr,
-                   "usage: bench_lts [--block B ...] [--sub K ...] [--tol-scale X] "
-                   "[--set key=value ...]\n");
+                   "usage: bench_lts [--block B ...] [--overlap V ...] [--sub K ...] "
+                   "[--tol-scale X] [--overlap-atol F] [--extrapolate] [--chase] "
+                   "[--reset-overlap] [--book-faces] [--reflux] [--flux-coupling] "
+                   "[--profile] [--set key=value ...]\n");
       return 2;
     }
   }
