@@ -335,6 +335,10 @@ RunInspection inspect_run(const fs::path& h5path, const std::string& config_toml
 }
 
 void write_atomically(const fs::path& path, std::string_view text) {
+  commit_temporary(write_temporary(path, text), path);
+}
+
+fs::path write_temporary(const fs::path& path, std::string_view text) {
   // A name no other process can hold: processes of one scan on different nodes of a
   // shared file system (MPI ranks, array tasks) may have the same PID, and ".tmpPID"
   // would then be one file written by both. mkstemp creates it exclusively (O_EXCL).
@@ -367,6 +371,10 @@ void write_atomically(const fs::path& path, std::string_view text) {
     fail("fsync failed", e);
   }
   if (close(fd) != 0) fail("close failed", errno);
+  return tmp;
+}
+
+void commit_temporary(const fs::path& tmp, const fs::path& path) {
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     const int e = errno;
     unlink(tmp.c_str());

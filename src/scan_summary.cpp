@@ -131,6 +131,39 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
     }
   }
 
+  // --- CSV, written to its temporary file first (renamed with the HDF5 file, below)
+  std::string csv = "id,name";
+  for (const ScanAxis& a : m.axes) csv.append(",").append(csv_field(a.key));
+  csv += ",status,exit_code,wall_s,steps,worker";
+  for (const std::string& o : outcome_names) csv.append(",").append(o);
+  csv += ",error\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
+    csv += std::to_string(m.entries[i].id) + "," + m.entries[i].name;
+    std::vector<std::string> fields;
+    for (const auto& [k, v] : m.entries[i].values)
+      fields.push_back(csv_field(unquote(v)));
+    fields.insert(fields.end(),
+                  {r.status, r.exit_code ? std::to_string(*r.exit_code) : "",
+                   csv_number(r.wall_s), csv_number(r.steps), csv_field(r.worker)});
+    for (const std::string& o : outcome_names) {
+      const auto it = r.outcome.find(o);
+      fields.push_back(csv_number(it == r.outcome.end() ? kNaN : it->second));
+    }
+    fields.push_back(csv_field(r.error));
+    for (const std::string& f : fields) csv.append(",").append(f);
+    csv += "\n";
+  }
+  const fs::path csv_tmp = write_temporary(dir / "summary.csv", csv);
+  struct RemoveCsvTemporary {
+    const fs::path& tmp;
+    bool armed = true;
+    ~RemoveCsvTemporary() {
+      std::error_code ec;
+      if (armed) fs::remove(tmp, ec);
+    }
+  } remove_csv_temporary{csv_tmp};
+
   // --- HDF5, built in memory, written to a temporary file and renamed
   const fs::path h5path = dir / "summary.h5";
   // host and PID: processes of one scan on different nodes of a shared file system may
@@ -221,33 +254,14 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
     if (H5Fflush(f.get(), H5F_SCOPE_GLOBAL) < 0)
       throw IoError(tmp.string() + ": flushing failed");
   }
+  // The two files are renamed back to back, so that a scan killed while it writes its
+  // summary leaves both old or both new (but for the moment between the renames), not
+  // the new HDF5 beside the old CSV while the CSV's temporary is written and fsynced.
   if (std::rename(tmp.c_str(), h5path.c_str()) != 0)
     throw IoError(h5path.string() + ": cannot rename the new summary over it");
+  commit_temporary(csv_tmp, dir / "summary.csv");
+  remove_csv_temporary.armed = false;
 
-  // --- CSV
-  std::string csv = "id,name";
-  for (const ScanAxis& a : m.axes) csv.append(",").append(csv_field(a.key));
-  csv += ",status,exit_code,wall_s,steps,worker";
-  for (const std::string& o : outcome_names) csv.append(",").append(o);
-  csv += ",error\n";
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const Row& r = rows[i];
-    csv += std::to_string(m.entries[i].id) + "," + m.entries[i].name;
-    std::vector<std::string> fields;
-    for (const auto& [k, v] : m.entries[i].values)
-      fields.push_back(csv_field(unquote(v)));
-    fields.insert(fields.end(),
-                  {r.status, r.exit_code ? std::to_string(*r.exit_code) : "",
-                   csv_number(r.wall_s), csv_number(r.steps), csv_field(r.worker)});
-    for (const std::string& o : outcome_names) {
-      const auto it = r.outcome.find(o);
-      fields.push_back(csv_number(it == r.outcome.end() ? kNaN : it->second));
-    }
-    fields.push_back(csv_field(r.error));
-    for (const std::string& f : fields) csv.append(",").append(f);
-    csv += "\n";
-  }
-  write_atomically(dir / "summary.csv", csv);
   return counts;
 }
 
