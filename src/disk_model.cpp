@@ -39,18 +39,15 @@ DiskModel::DiskModel(std::shared_ptr<const StateLayout> layout,
       modules_(std::move(modules)),
       pattern_(build_pattern(*layout_, modules_)) {}
 
+// The whole model is its cell-range form on every cell: that clears every row (every
+// column), and each module's add_*_cells on [0, n) is its add_rhs / add_jacobian.
 void DiskModel::rhs(double t, std::span<const double> y, std::span<double> ydot) const {
-  std::fill(ydot.begin(), ydot.end(), 0.0);
-  for (const auto& m : modules_)
-    if (!active_ || active_(m->name())) m->add_rhs(t, y, ydot);
+  rhs_cells(t, y, ydot, 0, layout_->n_cells());
 }
 
 void DiskModel::jacobian(double t, std::span<const double> y,
                          std::span<double> values) const {
-  std::fill(values.begin(), values.end(), 0.0);
-  JacobianValues jac(pattern_, values);
-  for (const auto& m : modules_)
-    if (!active_ || active_(m->name())) m->add_jacobian(t, y, jac);
+  jacobian_cells(t, y, values, 0, layout_->n_cells());
 }
 
 void DiskModel::rhs_cells(double t, std::span<const double> y, std::span<double> ydot,
