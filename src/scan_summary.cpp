@@ -20,6 +20,17 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+//! Removes a temporary file when the summary is left by an exception (a failed write:
+//! disk full, quota), so that none is left behind; `armed = false` once it is renamed.
+struct RemoveOnExit {
+  const fs::path& tmp;
+  bool armed = true;
+  ~RemoveOnExit() {
+    std::error_code ec;
+    if (armed) fs::remove(tmp, ec);
+  }
+};
+
 struct Row {
   std::string status, error, worker;
   std::optional<long> exit_code;  //!< none without a record (the run never ended)
@@ -155,14 +166,7 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
     csv += "\n";
   }
   const fs::path csv_tmp = write_temporary(dir / "summary.csv", csv);
-  struct RemoveCsvTemporary {
-    const fs::path& tmp;
-    bool armed = true;
-    ~RemoveCsvTemporary() {
-      std::error_code ec;
-      if (armed) fs::remove(tmp, ec);
-    }
-  } remove_csv_temporary{csv_tmp};
+  RemoveOnExit remove_csv_temporary{csv_tmp};
 
   // --- HDF5, built in memory, written to a temporary file and renamed
   const fs::path h5path = dir / "summary.h5";
@@ -172,13 +176,7 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
       dir / ("summary.h5.tmp." + hostname() + "." + std::to_string(getpid()));
   // a failed write (disk full, quota) leaves the old summary and no temporary file
   // (after the rename there is none to remove)
-  struct RemoveTemporary {
-    const fs::path& tmp;
-    ~RemoveTemporary() {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-    }
-  } remove_temporary{tmp};
+  RemoveOnExit remove_temporary{tmp};
   h5::quiet_errors();
   {
     h5::Handle f = h5::create_file_in_memory(tmp.string());
@@ -259,6 +257,7 @@ ScanCounts write_scan_summary(const fs::path& dir, const Manifest& m,
   // the new HDF5 beside the old CSV while the CSV's temporary is written and fsynced.
   if (std::rename(tmp.c_str(), h5path.c_str()) != 0)
     throw IoError(h5path.string() + ": cannot rename the new summary over it");
+  remove_temporary.armed = false;
   commit_temporary(csv_tmp, dir / "summary.csv");
   remove_csv_temporary.armed = false;
 
