@@ -120,6 +120,12 @@ struct History {
   //! Time derivative of the cubic Hermite interpolant of component k at time tq (the
   //! recorded derivative outside the records).
   double rate_at(double tq, int k) const { return hermite(tq, k, true); }
+  //! Component k's mean rate of change from the first record to the last (0 with one).
+  double mean_rate(int k) const {
+    const std::size_t m = t.size();
+    if (m < 2) return 0.0;
+    return (y[(m - 1) * n + k] - y[k]) / (t.back() - t.front());
+  }
   //! Cubic Hermite interpolation of component k at time tq.
   double at(double tq, int k) const { return hermite(tq, k, false); }
 
@@ -251,15 +257,10 @@ class Coupler {
   std::optional<double> prescribed_gain(int b, int k, double t) const {
     const Block& o = blocks_[owner_[blocks_[b].hi]];
     if (o.hist.t.empty() || o.q_lo.empty()) return std::nullopt;
-    if (how_.mean_flux) {  // the macro step's mean: a constant, which BDF integrates
-                           // exactly
-      const std::size_t m = o.hist.t.size();
-      if (m < 2) return 0.0;
-      const int c = static_cast<int>(o.q_lo[k]), n = o.hist.n;
-      return (o.hist.y[(m - 1) * n + c] - o.hist.y[c]) /
-             (o.hist.t.back() - o.hist.t.front());
-    }
-    return o.hist.rate_at(t, static_cast<int>(o.q_lo[k]));
+    const int c = static_cast<int>(o.q_lo[k]);
+    // --mean-flux: a constant over the macro step (BDF integrates it exactly within the
+    // step, not across the jump to the next step's: performance_log)
+    return how_.mean_flux ? o.hist.mean_rate(c) : o.hist.rate_at(t, c);
   }
   //! A solver counter (&SolverStats::nst, nfe, nje) summed over the blocks, each
   //! weighted by its cells (overlap included) or, with per_cell = false, not.
@@ -281,7 +282,7 @@ class Coupler {
   std::vector<double> base_;
   Coupling how_;
   std::vector<int> tslots_;  // the transported cell variables (sigma_d first)
-  void reflux();
+  void settle_faces();
 
  public:
   //! --book-faces/--reflux: the largest defect of a face over a snapshot interval (the
@@ -594,13 +595,14 @@ void Coupler::fill_ghosts(int bi, double t, std::span<double> y_full) const {
   }
 }
 
-// --reflux, at a snapshot (where the blocks restart): the dust mass that crossed each
-// face between two blocks since the last snapshot, as the outer block integrated it,
-// minus what the inner block's cell received in its own view, is put into that cell,
-// with its m and phi kept (the log-moments scaled with Sigma_d): mass is then conserved
-// at every snapshot as in the coupled run, and each face's flux is the outer block's
-// (the upwind side of the drift).
-void Coupler::reflux() {
+// --book-faces, at a snapshot (where the blocks restart): the defect of each face
+// between two blocks since the last snapshot, what the outer block booked through it
+// minus what the inner block's cell received in its own view (Sigma_d, Q_m, Q_phi), is
+// measured against the disk's dust; with --reflux it is also put into that cell, so that
+// mass would be conserved at every snapshot as in the coupled run, each face's flux
+// being the outer block's (the upwind side of the drift). The bookings' values here
+// become the starts of the next interval's.
+void Coupler::settle_faces() {
   const int sd = tslots_[0];
   double disk_dust = 0.0;  // [g]
   for (int i = 0; i < layout_.n_cells(); ++i)
@@ -625,6 +627,12 @@ void Coupler::reflux() {
       if (how_.reflux)
         base_[layout_.index(c, tslots_[k])] += defect / sim_.grid().area(c);
     }
+  }
+  for (Block& b : blocks_) {
+    b.q_lo_start.clear();
+    b.q_hi_start.clear();
+    for (long q : b.q_lo) b.q_lo_start.push_back(b.cvode->state()[q]);
+    for (long q : b.q_hi) b.q_hi_start.push_back(b.cvode->state()[q]);
   }
 }
 
@@ -679,15 +687,7 @@ std::vector<double> Coupler::run(int sub) {
     std::vector<long> per_block;
     for (const Block& b : blocks_) per_block.push_back(b.cvode->stats().nst);
     interval_steps_.push_back(per_block);
-    if (how_.books()) {
-      reflux();
-      for (Block& b : blocks_) {
-        b.q_lo_start.clear();
-        b.q_hi_start.clear();
-        for (long q : b.q_lo) b.q_lo_start.push_back(b.cvode->state()[q]);
-        for (long q : b.q_hi) b.q_hi_start.push_back(b.cvode->state()[q]);
-      }
-    }
+    if (how_.books()) settle_faces();
     for (Block& b : blocks_) {
       std::vector<double> yb(b.cvode->state().begin(), b.cvode->state().end());
       for (std::size_t k = 0; k < b.full_index.size(); ++k) {  // refluxed owned cells
