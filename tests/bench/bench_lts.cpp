@@ -34,7 +34,8 @@
 //
 // Usage: build/tests/bench_lts [--block B ...] [--overlap V ...] [--sub K ...]
 //            [--tol-scale X] [--overlap-atol F] [--extrapolate] [--chase]
-//            [--reset-overlap] [--book-faces] [--reflux] [--flux-coupling] [--mean-flux]
+//            [--reset-overlap] [--book-faces] [--reflux] [--reflux-larger]
+//            [--flux-coupling] [--mean-flux]
 //            [--profile]
 //            [--set key=value ...]
 // (measurements: README "Performance" and tests/bench/results/performance_log.md)
@@ -58,6 +59,7 @@
 //   --reflux:      that defect (of every transported variable) also put into the inner
 //                  cell at every snapshot, which would conserve mass as the coupled run
 //                  does
+//   --reflux-larger: the same, into whichever of the face's two cells holds more dust
 //   --flux-coupling: a block's outermost cell receives through its outer face not what
 //                  the block computes there from its ghosts, but what the outer block
 //                  booked through that face (the time derivative of that booking's dense
@@ -236,10 +238,13 @@ struct Coupling {
   bool chase = false;          // inner neighbours: continuous, towards an extrapolation
   bool reset_overlap = false;  // overlap cells set to their owners' at every snapshot
   bool reflux = false;         // each face's defect between its two blocks put back
+  bool reflux_larger = false;  // ... into the face's cell with more dust, not the inner
   bool book_faces = false;     // the faces booked in both views (the others imply it)
   bool flux_coupling = false;  // a block's outer face fed by the outer block's booking
   bool mean_flux = false;      // ... with its mean over the macro step
-  bool books() const { return book_faces || reflux || flux_coupling || mean_flux; }
+  bool books() const {
+    return book_faces || reflux || reflux_larger || flux_coupling || mean_flux;
+  }
   bool prescribed() const { return flux_coupling || mean_flux; }
 };
 
@@ -290,6 +295,8 @@ class Coupler {
   //! disk's dust mass, its inner cell, and the start of its last macro step [s]; and the
   //! sum of all of them (each a share of the disk's dust mass then)
   double worst_defect_ = 0.0, worst_defect_t_ = 0.0, sum_defect_ = 0.0;
+  //! the largest defect against the dust then in the fuller of its face's two cells
+  double worst_defect_face_ = 0.0;
   int worst_defect_cell_ = -1;
   void set_ghost_targets(double t0, double t1, bool fresh);
   std::vector<double> prev_base_;  // the state at the previous macro step's start
@@ -610,13 +617,24 @@ void Coupler::settle_faces() {
   for (Block& inner : blocks_) {
     if (inner.q_hi.empty()) continue;
     const Block& outer = blocks_[owner_[inner.hi]];
-    const int c = inner.hi - 1;
+    int c = inner.hi - 1;
+    // --reflux-larger: the face's cell with more dust takes the defect (the outer,
+    // upwind cell where the inner one is drained), so that no correction empties a cell
+    if (how_.reflux_larger &&
+        base_[layout_.index(inner.hi, sd)] * sim_.grid().area(inner.hi) >
+            base_[layout_.index(c, sd)] * sim_.grid().area(c))
+      c = inner.hi;
     for (std::size_t k = 0; k < tslots_.size(); ++k) {
       const double defect =  // [g], or the log-moment's
           (outer.cvode->state()[outer.q_lo[k]] - outer.q_lo_start[k]) -
           (inner.cvode->state()[inner.q_hi[k]] - inner.q_hi_start[k]);
       if (k == 0) {
         const double share = std::abs(defect) / disk_dust;
+        const double face_dust =  // [g] the more of the face's two cells
+            std::max(
+                base_[layout_.index(inner.hi - 1, sd)] * sim_.grid().area(inner.hi - 1),
+                base_[layout_.index(inner.hi, sd)] * sim_.grid().area(inner.hi));
+        worst_defect_face_ = std::max(worst_defect_face_, std::abs(defect) / face_dust);
         sum_defect_ += share;
         if (share > worst_defect_) {
           worst_defect_ = share;
@@ -624,7 +642,7 @@ void Coupler::settle_faces() {
           worst_defect_t_ = t_prev_;
         }
       }
-      if (how_.reflux)
+      if (how_.reflux || how_.reflux_larger)
         base_[layout_.index(c, tslots_[k])] += defect / sim_.grid().area(c);
     }
   }
@@ -717,9 +735,10 @@ void print_defect(const Coupler& lts) {
   std::printf(
       "  (largest face defect over a snapshot interval, the mass the outer block sent "
       "less what the inner one received: %.3g of the disk's dust mass, into cell %d, in "
-      "the interval ending after %.4g yr; the sum of all: %.3g)\n",
+      "the interval ending after %.4g yr; the sum of all: %.3g; the largest against the "
+      "dust in the fuller of the face's two cells: %.3g)\n",
       lts.worst_defect_, lts.worst_defect_cell_, lts.worst_defect_t_ / units::kYr,
-      lts.sum_defect_);
+      lts.sum_defect_, lts.worst_defect_face_);
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -734,13 +753,10 @@ int main(int argc, char** argv) {
   bool profile = false;
   std::vector<std::string> sets;
   const std::pair<const char*, bool*> switches[] = {
-      {"--profile", &profile},
-      {"--extrapolate", &how.extrapolate},
-      {"--chase", &how.chase},
-      {"--reset-overlap", &how.reset_overlap},
-      {"--reflux", &how.reflux},
-      {"--book-faces", &how.book_faces},
-      {"--flux-coupling", &how.flux_coupling},
+      {"--profile", &profile},           {"--extrapolate", &how.extrapolate},
+      {"--chase", &how.chase},           {"--reset-overlap", &how.reset_overlap},
+      {"--reflux", &how.reflux},         {"--reflux-larger", &how.reflux_larger},
+      {"--book-faces", &how.book_faces}, {"--flux-coupling", &how.flux_coupling},
       {"--mean-flux", &how.mean_flux}};
   const auto switch_named = [&](const char* arg) -> bool* {
     for (const auto& [name, flag] : switches)
@@ -766,8 +782,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: bench_lts [--block B ...] [--overlap V ...] [--sub K ...] "
                    "[--tol-scale X] [--overlap-atol F] [--extrapolate] [--chase] "
-                   "[--reset-overlap] [--book-faces] [--reflux] [--flux-coupling] "
-                   "[--mean-flux] "
+                   "[--reset-overlap] [--book-faces] [--reflux] [--reflux-larger] "
+                   "[--flux-coupling] [--mean-flux] "
                    "[--profile] [--set key=value ...]\n");
       return 2;
     }
