@@ -1,10 +1,11 @@
 #pragma once
 //! Local (one cell, midplane) gas state seen by the dust: the inputs of the particle and
-//! relative-velocity laws (physics/particle.hpp, physics/relative_velocity.hpp).
-//! Models: spec §1.3 (sound speed, scale height, midplane density), §1.4
-//! (pressure-gradient parameter eta), §1.5 (alpha turbulence), §1.6 (mean free path,
-//! molecular viscosity). Sources: standard thin-disk relations; Weidenschilling (1977)
-//! for eta; Shakura & Sunyaev (1973) for alpha. All quantities cgs.
+//! relative-velocity laws (physics/particle.hpp, physics/drag.hpp,
+//! physics/relative_velocity.hpp). Models: spec §1.3 (sound speed, scale height, midplane
+//! density), §1.4 (pressure-gradient parameter eta), §1.5 (alpha turbulence), §1.6 (mean
+//! free path, molecular viscosity). Sources: standard thin-disk relations;
+//! Weidenschilling (1977) for eta; Shakura & Sunyaev (1973) for alpha. All quantities
+//! cgs.
 #include <cmath>
 
 #include "src/units.hpp"

@@ -16,6 +16,7 @@
 
 #include "physics/local_gas.hpp"
 #include "physics/particle.hpp"
+#include "physics/smooth_switches.hpp"
 #include "src/units.hpp"
 
 namespace panoptic::physics {

@@ -91,8 +91,9 @@ KeySpec real_table(std::string key, std::string def, std::string unit, std::stri
 }
 
 // When a run reads a key (KeySpec::used_when), taken from the code that reads it
-// (src/simulation.cpp, disk/gas_disk.cpp, physics/growth_rates.hpp,
-// physics/planetesimals_cell_rates.hpp, src/observe.cpp). Values are TOML literals.
+// (src/simulation.cpp, disk/gas_disk.cpp, physics/growth_rates.hpp and the processes
+// it combines, physics/planetesimals_cell_rates.hpp, src/observe.cpp). Values are TOML
+// literals.
 UsedWhen is(std::string key, std::vector<std::string> values) {
   return UsedWhen{std::move(key), std::move(values)};
 }

@@ -5,7 +5,7 @@ the numbers were "worked out independently" by "a separate python3 script writte
 spec"; that script is not in the repository. This is such a script: everything below is
 computed here from the formulas of the physics spec (../shared/physics-spec.md, cited
 by section) and, where the spec leaves a smooth blend open, from the form the headers
-document (physics/particle.hpp: the p = 8 soft-max drag law; physics/relative_velocity.hpp:
+document (physics/drag.hpp: the p = 8 soft-max drag law; physics/relative_velocity.hpp:
 the OC07 blends; physics/contact_mechanics.hpp: w = 2 gamma). The C++ is neither called
 nor read; no output of it is used. numpy only (no scipy): St by bisection in ln St, peaks
 by golden section, switch points by bisection in ln m.
@@ -89,7 +89,7 @@ MU = 2.34                    # spec §1.1 [C] (mmsn_gas.hpp)
 SIGMA_MOL = 2e-15            # spec §1.6 [C] (mmsn_gas.hpp)
 ALPHA = 1e-3                 # spec §1.5 fiducial (mmsn_gas.hpp)
 DLNP_DLNR = -3.25            # spec §1.4, MMSN p = 1.5, q = 0.5 (mmsn_gas.hpp)
-P_SOFT = 8.0                 # spec §2: p-norm soft max, p = 8 (physics/particle.hpp)
+P_SOFT = 8.0                 # spec §2: p-norm soft max, p = 8 (physics/smooth_switches.hpp)
 P_ORDER = 32.0               # soft (St_hi, St_lo) ordering, physics/relative_velocity.hpp
 CD_NEWTON = 0.44 / 24.0      # spec §2: C_D = 0.44 = 24/Re_p * (0.01833 Re_p). The spec
 #                              rounds 0.44/24 = 0.0183333 to 0.01833; the tests' numbers
@@ -244,7 +244,7 @@ def soft_min(a, b, p=P_SOFT):
 
 def log_step(x, x0, half_width_dex):
     """Logistic step in ln x: 0.5 at x0, 0.05/0.95 at x0 10^-+w (spec §3.5; the form
-    physics/particle.hpp documents, 1 / (1 + (x0/x)^k), k = ln 19 / (w ln 10))."""
+    physics/smooth_switches.hpp documents, 1 / (1 + (x0/x)^k), k = ln 19 / (w ln 10))."""
     k = math.log(19.0) / (half_width_dex * math.log(10.0))
     return 0.5 * (1.0 + np.tanh(0.5 * k * np.log(x / x0)))
 

@@ -1,4 +1,5 @@
-//! Tests of physics/growth_rates.hpp, particle_rates() (spec §2-§5, §12): the coagulation
+//! Tests of physics/growth_rates.hpp, particle_rates(), and of the processes it combines
+//! (compaction.hpp, erosion.hpp, fragmentation.hpp; spec §2-§5, §12): the coagulation
 //! rate, erosion (E1 halt, E2 balance), fragmentation, bouncing, the soft St cap, the
 //! filling-factor slopes and the compaction floors, continuity of every smoothed switch
 //! and the AutoDiff derivatives. Gas: MMSN at 5 AU, alpha = 1e-3, ice monomers.
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "physics/contact_mechanics.hpp"
+#include "physics/drag.hpp"
 #include "physics/growth_rates.hpp"
 #include "physics/local_gas.hpp"
 #include "physics/particle.hpp"

@@ -1,4 +1,5 @@
-//! Tests of physics/particle.hpp and physics/local_gas.hpp (spec §1.3-1.6, §2, §12).
+//! Tests of physics/particle.hpp, physics/drag.hpp, physics/smooth_switches.hpp and
+//! physics/local_gas.hpp (spec §1.3-1.6, §2, §12).
 //! Reference numbers are the spec's (§12) and independent evaluations of the spec
 //! formulas made with a separate python3 script (bisection on the fixed-point equation,
 //! no Newton iteration, no C++), quoted to 10+ digits where used with tight tolerances.
@@ -9,6 +10,7 @@
 #include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
+#include "physics/drag.hpp"
 #include "physics/local_gas.hpp"
 #include "physics/particle.hpp"
 #include "src/units.hpp"

@@ -9,6 +9,7 @@
 #include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
+#include "physics/drag.hpp"
 #include "physics/local_gas.hpp"
 #include "physics/particle.hpp"
 #include "physics/relative_velocity.hpp"
