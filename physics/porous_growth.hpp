@@ -10,6 +10,7 @@
 //! Owns Q_m (growth.enabled) and Q_phi (porosity.enabled).
 #include <array>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "disk/gas_column.hpp"
@@ -42,9 +43,13 @@ struct ParticleCodec {
   T phi(const T* yc) const;  //!< filling factor
 };
 
-//! The local gas of every cell for the particle laws; refreshed from the state where the
-//! gas evolves (density, mean free path; the pressure gradient stays that of the initial
-//! gas: an approximation, see the note in porous_growth.cpp).
+//! The local gas of every cell for the particle laws. Where the gas evolves, its
+//! density-dependent quantities (density, mean free path, molecular viscosity) follow the
+//! cell's Sigma_g at every evaluation, and its pressure-gradient parameter eta and radial
+//! velocity v_r_gas, which depend on the neighbours' Sigma_g, are set from the state at
+//! every snapshot (set_pressure_and_flow, from Simulation::refresh_local_gas): between
+//! snapshots they stay fixed, so that each cell's particle laws stay local in the
+//! Jacobian (README, "What works": what an instantaneous eta would change).
 class CellGas {
  public:
   CellGas(std::vector<physics::LocalGas> initial, const GasColumn& gas)
@@ -53,8 +58,8 @@ class CellGas {
   template <class T>
   physics::LocalGas at(int cell, const T* yc) const {
     if (!gas_.evolves()) return initial_[cell];
-    // Density-dependent quantities follow the evolving Sigma_g (spec §1.3, §1.6); the
-    // pressure gradient (eta) stays that of the initial gas.
+    // Density-dependent quantities follow the evolving Sigma_g (spec §1.3, §1.6); eta
+    // and v_r_gas are those of the last snapshot (set_pressure_and_flow).
     return physics::with_density_ratio(initial_[cell],
                                        value_of(yc[gas_.slot]) / initial_[cell].sigma_g);
   }
@@ -62,6 +67,15 @@ class CellGas {
   //! Jacobians of cells whose gas evolves (call only then).
   physics::LocalGasT<AD> at_ad(int cell, const AD* yc) const;
   const physics::LocalGas& initial(int cell) const { return initial_[cell]; }
+  //! Sets eta [-] and v_r_gas [cm s^-1] of every cell (spec §1.4; §3 item 2); the
+  //! density-dependent quantities keep their reference at the initial Sigma_g.
+  void set_pressure_and_flow(std::span<const double> eta,
+                             std::span<const double> v_r_gas) {
+    for (std::size_t i = 0; i < initial_.size(); ++i) {
+      initial_[i].eta = eta[i];
+      initial_[i].v_r_gas = v_r_gas[i];
+    }
+  }
   //! Slot of Sigma_g in the cell state, or -1 for static gas.
   int evolves_slot() const { return gas_.slot; }
 
@@ -90,6 +104,13 @@ class GrowthStokes : public StokesModel {
   //! Q_phi) are computed once per cell state and chained onto the caller's seeds
   //! (ad_chain), instead of one AD Newton solve per use (four per cell and Jacobian).
   AD St(int cell, const AD* ycell) const override;
+  //! Empties the caches: the gas they were computed with has changed
+  //! (CellGas::set_pressure_and_flow).
+  void forget() const {
+    cache_key_.clear();
+    cache_.clear();
+    ad_cache_.clear();
+  }
   //! The same chained onto ADCell seeds (the growth rates' own Jacobian, static gas).
   ADCell St(int cell, const ADCell* ycell) const;
 
@@ -140,6 +161,12 @@ class PorousGrowth : public PhysicsModule {
   //! and chained onto the caller's seeds (ad_chain).
   void rates_ad(int cell, const AD* yc, AD& dlnm_dt, AD& dlnphi_dt) const;
   const physics::GrowthOptions& options() const { return opt_; }
+  //! Empties the memos of cell_rates and rates_ad (GrowthStokes::forget).
+  void forget() const {
+    memo_key_.clear();
+    memo_.clear();
+    ad_memo_.clear();
+  }
 
  private:
   template <class T>

@@ -252,6 +252,7 @@ int run(const RunArgs& a) {
   std::fflush(stdout);
   // 6 integrator, from the initial state or the checkpoint's (with its statistics)
   const std::vector<double> y0 = restart ? restart->chk.y : sim.initial_state();
+  sim.refresh_local_gas(y0);  // eta and v_g of the particle laws (evolving gas)
   CvodeIntegrator cvode(sim.model(), times.front(), y0, sim.integrator_options());
   if (restart) cvode.carry_stats(restart->chk.stats);
   const long index0 = restart ? restart->chk.snapshot_index : 0;
@@ -337,7 +338,10 @@ int run(const RunArgs& a) {
       });
       snapshot(times[k], cvode.state());
       std::vector<double> y(cvode.state().begin(), cvode.state().end());
-      if (reinit) cvode.reinit(times[k], y);
+      if (reinit) {  // the particle laws' eta and v_g from this snapshot's gas on
+        sim.refresh_local_gas(y);
+        cvode.reinit(times[k], y);
+      }
       last = record(times[k], std::move(y), index0 + static_cast<long>(k));
       last_rows = row_counts(out.row_digests());
       if (k + 1 == times.size()) break;

@@ -432,7 +432,9 @@ std::vector<KeySpec> make_keys() {
       // [solver] (continued) and [checkpoint]: restart, README "Restart"
       flag("solver.reinit_at_snapshots", "true",
            "reinitialise CVODE at every snapshot time, so that a run restarted from a "
-           "checkpoint is bit-for-bit identical to one never stopped"),
+           "checkpoint is bit-for-bit identical to one never stopped; with gas.evolve "
+           "the particle laws' eta and gas velocity are also set from the gas there "
+           "(false: once, at the start)"),
       real("checkpoint.every_wall_s", "1800.0", "s",
            "checkpoint at the first snapshot after this much wall time since the last "
            "one (0 = off); one is always written at the end and when stopped",

@@ -283,6 +283,7 @@ Simulation::Simulation(const Config& cfg)
     auto st = std::make_unique<GrowthStokes>(*codec_, *cell_gas_, species_,
                                              growth_options_from_config(cfg).drag);
     growth_stokes = st.get();
+    growth_stokes_ = growth_stokes;
     stokes_ = std::move(st);
   } else {
     std::vector<double> st(n);
@@ -480,6 +481,39 @@ std::vector<double> Simulation::initial_state() const {
     if (growth_) y[L.index(i, codec_->qm_slot)] = sigma_d0_[i] * codec_->x_lo[i];
   }
   return y;
+}
+
+void Simulation::refresh_local_gas(std::span<const double> y) {
+  if (!cell_gas_ || !gas_.evolves()) return;
+  const int n = grid_.n_cells();
+  const auto& L = *layout_;
+  std::vector<double> sigma(n);
+  for (int i = 0; i < n; ++i) sigma[i] = y[L.index(i, gas_.slot)];
+  // eta at the cell centres as for the initial gas (make_local_gas, spec §1.4), from the
+  // pressure gradient of this Sigma_g: the same bits as the initial eta at t = 0.
+  const auto dlnp = dlnp_dlnr_centres(*disk_, grid_, sigma);
+  // v_g on the faces as the dust drift takes it (DustTransport::velocity: F_g over
+  // the geometric-mean Sigma_g of the face; the first cell's on the inner face; no flow
+  // through the outer face), averaged onto the centres (spec §3 item 2).
+  const ViscousStencil& stencil = viscous_->stencil();
+  std::vector<double> v_face(n + 1, 0.0);
+  for (int f = 0; f < n; ++f) {
+    const double sa = sigma[f > 0 ? f - 1 : 0], sb = sigma[f > 0 ? f : 0];
+    const double s_face = f > 0 ? std::sqrt(sa * sb) : sa;
+    v_face[f] = stencil.face_flux(f, sa, sb) / s_face;
+  }
+  std::vector<double> eta(n), v_r_gas(n);
+  for (int i = 0; i < n; ++i) {
+    const double r = grid_.r_c(i);
+    eta[i] = physics::make_local_gas(gas_.static_sigma[i], disk_->temperature(r), r,
+                                     disk_->star().mass, disk_->alpha(), dlnp[i],
+                                     disk_->thermal().mu, disk_->thermal().sigma_mol)
+                 .eta;
+    v_r_gas[i] = 0.5 * (v_face[i] + v_face[i + 1]);
+  }
+  cell_gas_->set_pressure_and_flow(eta, v_r_gas);
+  if (growth_stokes_) growth_stokes_->forget();
+  if (growth_) growth_->forget();
 }
 
 IntegratorOptions Simulation::integrator_options() const {

@@ -24,6 +24,7 @@ class StokesModel;
 class DustTransport;
 class ViscousGas;
 class PorousGrowth;
+class GrowthStokes;
 class Planetesimals;
 class CellGas;
 struct ParticleCodec;
@@ -77,8 +78,16 @@ class Simulation {
   const DustTransport& transport() const { return *transport_; }
   //! The growth module, or null when growth is off.
   const PorousGrowth* growth() const { return growth_; }
+  //! The local gas the particle laws see, or null when growth is off.
+  const CellGas* cell_gas() const { return cell_gas_.get(); }
 
   std::vector<double> initial_state() const;
+  //! Where the gas evolves: sets the pressure-gradient parameter eta and the radial gas
+  //! velocity that the particle laws see (CellGas::set_pressure_and_flow) from the gas
+  //! at state y. Called where CVODE starts or restarts (every snapshot, with
+  //! solver.reinit_at_snapshots), so that a restart from a checkpoint sees the same gas
+  //! as the run never stopped. No-op for static gas or without growth.
+  void refresh_local_gas(std::span<const double> y);
   IntegratorOptions integrator_options() const;
   //! Snapshot times [s], t = 0 first, t_end last.
   std::vector<double> output_times() const;
@@ -134,6 +143,7 @@ class Simulation {
   std::unique_ptr<CellGas> cell_gas_;
   std::unique_ptr<ParticleCodec> codec_;
   const PorousGrowth* growth_ = nullptr;
+  const GrowthStokes* growth_stokes_ = nullptr;
   const Planetesimals* planetesimals_ = nullptr;
   std::vector<PebbleMonitor> monitors_;
   std::vector<BudgetTerm> budget_terms_;

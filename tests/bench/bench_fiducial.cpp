@@ -139,6 +139,7 @@ Result run_once(const Config& cfg, long trace_every, bool lts) {
   const auto y0 = sim.initial_state();
   Result res;
   const auto t0 = std::chrono::steady_clock::now();
+  sim.refresh_local_gas(y0);  // as panoptic run (evolving gas)
   CvodeIntegrator cvode(sim.model(), times.front(), y0, sim.integrator_options());
   cvode.set_profile(&res.times);
   const bool reinit = cfg.flag("solver.reinit_at_snapshots");
@@ -169,6 +170,7 @@ Result run_once(const Config& cfg, long trace_every, bool lts) {
     });
     if (reinit) {
       const std::vector<double> y(cvode.state().begin(), cvode.state().end());
+      sim.refresh_local_gas(y);
       cvode.reinit(times[k], y);
     }
   }

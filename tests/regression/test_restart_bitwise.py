@@ -184,6 +184,20 @@ def main():
     c.check(not diffs and rows(grown2) == rows(grown),
             f"growth model restarted from snapshot {k} of {rows(grown) - 1}: identical "
             f"{diffs if diffs else ''}")
+    # ... on evolving gas: the particle laws' eta and v_g are set from the gas at every
+    # snapshot (Simulation::refresh_local_gas); the restart sets them from the
+    # checkpoint's state, as the run never stopped did at that snapshot
+    ge_sets = growth_sets[:1] + ["gas.evolve=true", "output.t_end_yr=3e4"] + growth_sets[2:]
+    ge = f"{w}/growth_gas.h5"
+    panoptic(args.exe, FIDUCIAL, "-o", ge, "--overwrite", sets=ge_sets)
+    ge2 = f"{w}/growth_gas_restarted.h5"
+    copy_run(ge, ge2, files=("output", "prev"))
+    k = checkpoint_attrs(previous_of(ge2))["snapshot_index"]
+    panoptic(args.exe, FIDUCIAL, "--restart", previous_of(ge2), "-o", ge2, sets=ge_sets)
+    diffs = snapshot_differences(ge, ge2, MID_RUN_GROUPS)
+    c.check(not diffs and rows(ge2) == rows(ge),
+            f"growth model on evolving gas restarted from snapshot {k} of {rows(ge) - 1}: "
+            f"identical {diffs if diffs else ''}")
     # ... and a run of it cut at a snapshot, then continued to the end: /timeseries and
     # /summary as well as /snapshots equal the uninterrupted run's
     g_times = [float(t) for t in np.geomspace(10.0, 1e3, 8)]
