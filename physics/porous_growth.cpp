@@ -100,8 +100,8 @@ template AD ParticleCodec::phi<AD>(const AD*) const;
 
 physics::LocalGasT<AD> CellGas::at_ad(int cell, const AD* yc) const {
   // as at(), with the ratio carrying the derivatives of Sigma_g
-  return physics::with_density_ratio(initial_[cell],
-                                     AD(yc[gas_.slot] / initial_[cell].sigma_g));
+  return physics::with_density_ratio(reference_[cell],
+                                     AD(yc[gas_.slot] / reference_[cell].sigma_g));
 }
 
 const GrowthStokes::Particle& GrowthStokes::particle(int cell, const double* yc) const {

@@ -52,35 +52,37 @@ struct ParticleCodec {
 //! Jacobian (README, "What works": what an instantaneous eta would change).
 class CellGas {
  public:
-  CellGas(std::vector<physics::LocalGas> initial, const GasColumn& gas)
-      : initial_(std::move(initial)), gas_(gas) {}
+  CellGas(std::vector<physics::LocalGas> reference, const GasColumn& gas)
+      : reference_(std::move(reference)), gas_(gas) {}
   //! The gas of `cell` whose state is `yc`, read at its value (the RHS, and static gas).
   template <class T>
   physics::LocalGas at(int cell, const T* yc) const {
-    if (!gas_.evolves()) return initial_[cell];
+    if (!gas_.evolves()) return reference_[cell];
     // Density-dependent quantities follow the evolving Sigma_g (spec §1.3, §1.6); eta
     // and v_r_gas are those of the last snapshot (set_pressure_and_flow).
-    return physics::with_density_ratio(initial_[cell],
-                                       value_of(yc[gas_.slot]) / initial_[cell].sigma_g);
+    return physics::with_density_ratio(
+        reference_[cell], value_of(yc[gas_.slot]) / reference_[cell].sigma_g);
   }
   //! The same with the density-dependent quantities as functions of Sigma_g (AD), for
   //! Jacobians of cells whose gas evolves (call only then).
   physics::LocalGasT<AD> at_ad(int cell, const AD* yc) const;
-  const physics::LocalGas& initial(int cell) const { return initial_[cell]; }
+  //! The gas the cell's particle laws start from: its density-dependent quantities at
+  //! the initial Sigma_g (scaled by at()), eta and v_r_gas of the last refresh.
+  const physics::LocalGas& reference(int cell) const { return reference_[cell]; }
   //! Sets eta [-] and v_r_gas [cm s^-1] of every cell (spec §1.4; §3 item 2); the
   //! density-dependent quantities keep their reference at the initial Sigma_g.
   void set_pressure_and_flow(std::span<const double> eta,
                              std::span<const double> v_r_gas) {
-    for (std::size_t i = 0; i < initial_.size(); ++i) {
-      initial_[i].eta = eta[i];
-      initial_[i].v_r_gas = v_r_gas[i];
+    for (std::size_t i = 0; i < reference_.size(); ++i) {
+      reference_[i].eta = eta[i];
+      reference_[i].v_r_gas = v_r_gas[i];
     }
   }
   //! Slot of Sigma_g in the cell state, or -1 for static gas.
   int evolves_slot() const { return gas_.slot; }
 
  private:
-  std::vector<physics::LocalGas> initial_;
+  std::vector<physics::LocalGas> reference_;
   const GasColumn& gas_;
 };
 

@@ -430,7 +430,7 @@ void Simulation::check_start_is_finite() const {
     if (!(std::isfinite(sigma_d0_[i]) && sigma_d0_[i] >= 0.0))
       fail(i, "initial Sigma_d [g cm^-2]", sigma_d0_[i]);
     if (cell_gas_) {
-      const auto& g = cell_gas_->initial(i);
+      const auto& g = cell_gas_->reference(i);
       for (const auto& [name, v] : {std::pair{"rho_g [g cm^-3]", g.rho_g},
                                     {"mean free path [cm]", g.mfp},
                                     {"nu_mol [cm^2 s^-1]", g.nu_mol},

@@ -44,19 +44,19 @@ TEST(GasRefresh, EtaFollowsTheSlopeOfTheRefreshedGas) {
   const int n = sim.grid().n_cells();
   std::vector<double> eta0(n);
   for (int i = 0; i < n; ++i) {
-    eta0[i] = gas.initial(i).eta;
-    EXPECT_EQ(gas.initial(i).v_r_gas, 0.0);  // before any refresh
+    eta0[i] = gas.reference(i).eta;
+    EXPECT_EQ(gas.reference(i).v_r_gas, 0.0);  // before any refresh
   }
   sim.refresh_local_gas(
       sim.initial_state());  // the initial gas: the same eta, bit for bit
-  for (int i = 0; i < n; ++i) EXPECT_EQ(gas.initial(i).eta, eta0[i]) << "cell " << i;
+  for (int i = 0; i < n; ++i) EXPECT_EQ(gas.reference(i).eta, eta0[i]) << "cell " << i;
   // d ln Sigma_g / d ln r up by 0.5 everywhere: eta = -(h/r)^2 (d ln P / d ln r) / 2
   // falls by (h/r)^2 / 4 (a centred difference in ln r is exact for a term linear in ln
   // r)
   sim.refresh_local_gas(flatter_gas(sim));
   for (int i = 0; i < n; ++i) {
     const double r = sim.grid().r_c(i), hr = sim.disk().h_g(r) / r;
-    EXPECT_NEAR(gas.initial(i).eta, eta0[i] - 0.25 * hr * hr, 1e-12 * std::abs(eta0[i]))
+    EXPECT_NEAR(gas.reference(i).eta, eta0[i] - 0.25 * hr * hr, 1e-12 * std::abs(eta0[i]))
         << "cell " << i;
   }
 }
@@ -79,7 +79,7 @@ double gas_velocity_error(int n_cells) {
     const double r = sim.grid().r_c(i);
     if (r < 1.5 * units::kAu || r > 100.0 * units::kAu) continue;
     const double exact = -3.0 * sim.disk().nu(r) / r0;
-    worst = std::max(worst, std::abs(sim.cell_gas()->initial(i).v_r_gas / exact - 1.0));
+    worst = std::max(worst, std::abs(sim.cell_gas()->reference(i).v_r_gas / exact - 1.0));
   }
   return worst;
 }
