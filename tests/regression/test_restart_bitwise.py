@@ -154,50 +154,37 @@ def main():
             f"is found, written as NaN, named on stderr and in the root attribute "
             f"restarts; every other row identical ({lost or 'not so'})")
 
-    # Evolving gas: two variables per cell and one more booked mass.
-    lbp = "params/tests/lbp_viscous.toml"
-    lbp_sets = ["grid.n_cells=100", "output.times_yr=[1e3, 3e3, 1e4, 3e4, 1e5]",
-                "checkpoint.every_snapshots=2"]
-    gas = f"{w}/gas.h5"
-    panoptic(args.exe, lbp, "-o", gas, "--overwrite", sets=lbp_sets)
-    gas2 = f"{w}/gas_restarted.h5"
-    copy_run(gas, gas2, files=("output", "prev"))
-    k = checkpoint_attrs(previous_of(gas2))["snapshot_index"]
-    panoptic(args.exe, lbp, "--restart", previous_of(gas2), "-o", gas2, sets=lbp_sets)
-    diffs = snapshot_differences(gas, gas2, MID_RUN_GROUPS)
-    c.check(not diffs and rows(gas2) == rows(gas),
-            f"evolving gas (sigma_d, sigma_g per cell) restarted from snapshot {k} of "
-            f"{rows(gas) - 1}: identical {diffs if diffs else ''}")
+    def restarted_from_prev(scene, sets, name, what):
+        """Runs `scene`, restarts a copy from its mid-run .chk.prev.h5 and checks that
+        the copy ends identical to the run never stopped."""
+        full = f"{w}/{name}.h5"
+        panoptic(args.exe, scene, "-o", full, "--overwrite", sets=sets)
+        again = f"{w}/{name}_restarted.h5"
+        copy_run(full, again, files=("output", "prev"))
+        k = checkpoint_attrs(previous_of(again))["snapshot_index"]
+        panoptic(args.exe, scene, "--restart", previous_of(again), "-o", again, sets=sets)
+        diffs = snapshot_differences(full, again, MID_RUN_GROUPS)
+        c.check(not diffs and rows(again) == rows(full),
+                f"{what} restarted from snapshot {k} of {rows(full) - 1}: identical "
+                f"{diffs if diffs else ''}")
 
+    # Evolving gas: two variables per cell and one more booked mass.
+    restarted_from_prev("params/tests/lbp_viscous.toml",
+                        ["grid.n_cells=100", "output.times_yr=[1e3, 3e3, 1e4, 3e4, 1e5]",
+                         "checkpoint.every_snapshots=2"],
+                        "gas", "evolving gas (sigma_d, sigma_g per cell)")
     # The full model of params/fiducial.toml: growth and porosity (sigma_d, q_m, q_phi per
     # cell), snow-line sublimation, planetesimals, /timeseries.
     growth_sets = ["grid.n_cells=40", "output.t_end_yr=1e3", "output.t_first_yr=10.0",
                    "output.n_snapshots=8", "checkpoint.every_snapshots=3"]
-    grown = f"{w}/growth.h5"
-    panoptic(args.exe, FIDUCIAL, "-o", grown, "--overwrite", sets=growth_sets)
-    grown2 = f"{w}/growth_restarted.h5"
-    copy_run(grown, grown2, files=("output", "prev"))
-    k = checkpoint_attrs(previous_of(grown2))["snapshot_index"]
-    panoptic(args.exe, FIDUCIAL, "--restart", previous_of(grown2), "-o", grown2,
-             sets=growth_sets)
-    diffs = snapshot_differences(grown, grown2, MID_RUN_GROUPS)
-    c.check(not diffs and rows(grown2) == rows(grown),
-            f"growth model restarted from snapshot {k} of {rows(grown) - 1}: identical "
-            f"{diffs if diffs else ''}")
+    restarted_from_prev(FIDUCIAL, growth_sets, "growth", "growth model")
     # ... on evolving gas: the particle laws' eta and v_g are set from the gas at every
     # snapshot (Simulation::refresh_local_gas); the restart sets them from the
     # checkpoint's state, as the run never stopped did at that snapshot
-    ge_sets = growth_sets[:1] + ["gas.evolve=true", "output.t_end_yr=3e4"] + growth_sets[2:]
-    ge = f"{w}/growth_gas.h5"
-    panoptic(args.exe, FIDUCIAL, "-o", ge, "--overwrite", sets=ge_sets)
-    ge2 = f"{w}/growth_gas_restarted.h5"
-    copy_run(ge, ge2, files=("output", "prev"))
-    k = checkpoint_attrs(previous_of(ge2))["snapshot_index"]
-    panoptic(args.exe, FIDUCIAL, "--restart", previous_of(ge2), "-o", ge2, sets=ge_sets)
-    diffs = snapshot_differences(ge, ge2, MID_RUN_GROUPS)
-    c.check(not diffs and rows(ge2) == rows(ge),
-            f"growth model on evolving gas restarted from snapshot {k} of {rows(ge) - 1}: "
-            f"identical {diffs if diffs else ''}")
+    restarted_from_prev(FIDUCIAL,
+                        growth_sets[:1] + ["gas.evolve=true", "output.t_end_yr=3e4"] +
+                        growth_sets[2:],
+                        "growth_gas", "growth model on evolving gas")
     # ... and a run of it cut at a snapshot, then continued to the end: /timeseries and
     # /summary as well as /snapshots equal the uninterrupted run's
     g_times = [float(t) for t in np.geomspace(10.0, 1e3, 8)]
