@@ -809,6 +809,12 @@ std::string Simulation::summary() const {
                   "below it, and then never bounce"
                 : "with porosity off nothing grows")
         << "\n";
+    // refresh_local_gas runs where CVODE restarts (README, "What works")
+    if (gas_.evolves() && !cfg_.flag("solver.reinit_at_snapshots"))
+      s << "WARNING: gas.evolve with solver.reinit_at_snapshots = false: the pressure "
+           "gradient (eta) and gas velocity that the particle laws see are set once, at "
+           "the start, and not from the evolving gas at every snapshot; set "
+           "solver.reinit_at_snapshots = true to follow the gas\n";
   }
   return s.str();
 }

@@ -110,5 +110,19 @@ TEST(GasRefresh, CachesForgetTheGasBefore) {
   EXPECT_NE(after, before);  // the refresh changed the rates
 }
 
+TEST(GasRefresh, SummaryWarnsWhereTheGasIsSetOnlyAtTheStart) {
+  const std::string file = std::string(PANOPTIC_SOURCE_DIR) + "/params/fiducial.toml";
+  const auto summary = [&](std::vector<std::string> sets) {
+    return Simulation(load_scene(file, sets)).summary();
+  };
+  const std::string warning = "WARNING: gas.evolve with solver.reinit_at_snapshots";
+  EXPECT_NE(
+      summary({"gas.evolve=true", "solver.reinit_at_snapshots=false"}).find(warning),
+      std::string::npos);
+  EXPECT_EQ(summary({"gas.evolve=true"}).find(warning), std::string::npos);
+  EXPECT_EQ(summary({"solver.reinit_at_snapshots=false"}).find(warning),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace panoptic
