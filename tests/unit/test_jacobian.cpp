@@ -196,12 +196,17 @@ std::vector<double> grown_state(const Simulation& sim, unsigned seed) {
   return y;
 }
 
-void expect_exact_growth(const std::vector<std::string>& overrides, const char* label) {
+//! refresh: the particle laws' eta and gas velocity first set from the state's gas
+//! (Simulation::refresh_local_gas, as at a snapshot of a run on evolving gas).
+void expect_exact_growth(const std::vector<std::string>& overrides, const char* label,
+                         bool refresh = false) {
   std::vector<std::string> sets{"growth.enabled=true", "grid.r_in_au=1.0"};
   sets.insert(sets.end(), overrides.begin(), overrides.end());
   Simulation sim(scene(sets));
   for (unsigned seed : {1u, 2u}) {
-    const auto c = compare_with_fd(sim, grown_state(sim, seed));
+    const std::vector<double> y = grown_state(sim, seed);
+    if (refresh) sim.refresh_local_gas(y);
+    const auto c = compare_with_fd(sim, y);
     const auto& L = sim.model().layout();
     print_errors(label, seed, c.max_rel_err, c.max_entry_err);
     EXPECT_LT(c.max_rel_err, 1e-7)  // measured at most 1.4e-8
@@ -301,6 +306,14 @@ TEST(Jacobian, GrowthOnEvolvingGas) {
   expect_exact_growth({"gas.evolve=true"}, "growth, phi = 1, evolving gas");
   expect_exact_growth({"gas.evolve=true", "porosity.enabled=true"},
                       "porous growth, evolving gas");
+}
+
+// ... with eta and v_g set from a perturbed gas (+-30 % per cell): v_g enters the
+// collision speeds (spec §3 item 2), eta the drag, speeds and floors, as parameters.
+TEST(Jacobian, GrowthOnRefreshedEvolvingGas) {
+  expect_exact_growth({"gas.evolve=true", "porosity.enabled=true",
+                       "erosion.model=\"balance\"", "planetesimals.coagulation=true"},
+                      "porous growth, E2, planetesimals, refreshed gas", true);
 }
 
 TEST(Jacobian, ErosionAndPlanetesimalsOnEvolvingGas) {
