@@ -9,6 +9,7 @@
 //! accretion rate of the first cell, Mdot = 3 pi nu Sigma_g (Lynden-Bell & Pringle 1974:
 //! the rate far from any torque), as if the disk went on inside r_in; zero_torque sets
 //! nu Sigma_g r^(1/2) = 0 on the inner face (a stellar surface or cavity edge at r_in).
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -34,6 +35,15 @@ struct ViscousStencil {
   T face_flux(int f, const T& sigma_a, const T& sigma_b) const {
     if (f == 0) return face_coef[0] * (g_coef[0] * sigma_a);
     return face_coef[f] * (g_coef[f] * sigma_b - g_coef[f - 1] * sigma_a);
+  }
+  //! Gas radial velocity on face f, v_g = F_g / Sigma_g (spec §1.2, §6.1) [cm s^-1]:
+  //! over the geometric mean of the two cells' Sigma_g, on the inner face the first
+  //! cell's (the dust drift's, and the particle laws' via Simulation::refresh_local_gas).
+  template <class T>
+  T face_velocity(int f, const T& sigma_a, const T& sigma_b) const {
+    using std::sqrt;
+    const T sigma_face = f > 0 ? T(sqrt(sigma_a * sigma_b)) : sigma_a;
+    return face_flux(f, sigma_a, sigma_b) / sigma_face;
   }
 };
 

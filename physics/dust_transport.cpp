@@ -140,12 +140,9 @@ T DustTransport::velocity(int f, const T* ya, const T* yb, const T& st) const {
   }
   T v = -2.0 * st * eta_vk / one_plus_st2;  // spec §6.1 drift
   if (gas_.evolves()) {
-    // v_g = F_g / Sigma_g on the face (spec §1.2, §6.1); on the inner face Sigma_g of
-    // the first cell.
-    using std::sqrt;
+    // v_g = F_g / Sigma_g on the face (spec §1.2, §6.1)
     const T sg_a = gas_.sigma(a, ya), sg_b = gas_.sigma(a + 1, yb);
-    const T sg_face = f > 0 ? T(sqrt(sg_a * sg_b)) : sg_a;
-    v += viscous_->face_flux(f, sg_a, sg_b) / sg_face / one_plus_st2;
+    v += viscous_->face_velocity(f, sg_a, sg_b) / one_plus_st2;
   }
   return v;
 }

@@ -257,12 +257,7 @@ Simulation::Simulation(const Config& cfg)
   // The local gas of every cell and the decoder of the particle state (spec §2, §6.2).
   const auto dlnp = dlnp_dlnr_centres(*disk_, grid_, gas_.static_sigma);
   std::vector<physics::LocalGas> local(n);
-  for (int i = 0; i < n; ++i) {
-    const double r = grid_.r_c(i);
-    local[i] = physics::make_local_gas(gas_.static_sigma[i], disk_->temperature(r), r,
-                                       disk_->star().mass, disk_->alpha(), dlnp[i],
-                                       disk_->thermal().mu, disk_->thermal().sigma_mol);
-  }
+  for (int i = 0; i < n; ++i) local[i] = local_gas(i, dlnp[i]);
   cell_gas_ = std::make_unique<CellGas>(std::move(local), gas_);
   codec_ = std::make_unique<ParticleCodec>();
   codec_->m_ref = std::min(ice.m0, sil.m0);
@@ -483,32 +478,30 @@ std::vector<double> Simulation::initial_state() const {
   return y;
 }
 
+physics::LocalGas Simulation::local_gas(int cell, double dlnp_dlnr) const {
+  const double r = grid_.r_c(cell);
+  return physics::make_local_gas(gas_.static_sigma[cell], disk_->temperature(r), r,
+                                 disk_->star().mass, disk_->alpha(), dlnp_dlnr,
+                                 disk_->thermal().mu, disk_->thermal().sigma_mol);
+}
+
 void Simulation::refresh_local_gas(std::span<const double> y) {
   if (!cell_gas_ || !gas_.evolves()) return;
   const int n = grid_.n_cells();
   const auto& L = *layout_;
   std::vector<double> sigma(n);
   for (int i = 0; i < n; ++i) sigma[i] = y[L.index(i, gas_.slot)];
-  // eta at the cell centres as for the initial gas (make_local_gas, spec §1.4), from the
+  // eta at the cell centres as for the initial gas (local_gas, spec §1.4), from the
   // pressure gradient of this Sigma_g: the same bits as the initial eta at t = 0.
   const auto dlnp = dlnp_dlnr_centres(*disk_, grid_, sigma);
-  // v_g on the faces as the dust drift takes it (DustTransport::velocity: F_g over
-  // the geometric-mean Sigma_g of the face; the first cell's on the inner face; no flow
-  // through the outer face), averaged onto the centres (spec §3 item 2).
-  const ViscousStencil& stencil = viscous_->stencil();
+  // v_g on the faces as the dust drift takes it (no flow through the outer face),
+  // averaged onto the centres (spec §3 item 2).
   std::vector<double> v_face(n + 1, 0.0);
-  for (int f = 0; f < n; ++f) {
-    const double sa = sigma[f > 0 ? f - 1 : 0], sb = sigma[f > 0 ? f : 0];
-    const double s_face = f > 0 ? std::sqrt(sa * sb) : sa;
-    v_face[f] = stencil.face_flux(f, sa, sb) / s_face;
-  }
+  for (int f = 0; f < n; ++f)
+    v_face[f] = viscous_->stencil().face_velocity(f, sigma[f > 0 ? f - 1 : 0], sigma[f]);
   std::vector<double> eta(n), v_r_gas(n);
   for (int i = 0; i < n; ++i) {
-    const double r = grid_.r_c(i);
-    eta[i] = physics::make_local_gas(gas_.static_sigma[i], disk_->temperature(r), r,
-                                     disk_->star().mass, disk_->alpha(), dlnp[i],
-                                     disk_->thermal().mu, disk_->thermal().sigma_mol)
-                 .eta;
+    eta[i] = local_gas(i, dlnp[i]).eta;
     v_r_gas[i] = 0.5 * (v_face[i] + v_face[i + 1]);
   }
   cell_gas_->set_pressure_and_flow(eta, v_r_gas);

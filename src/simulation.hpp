@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "disk/gas_column.hpp"
+#include "physics/local_gas.hpp"
 #include "src/config.hpp"
 #include "src/cvode_integrator.hpp"
 #include "src/disk_model.hpp"
@@ -130,6 +131,9 @@ class Simulation {
   //! Throws ConfigError when the gas disk, the local gas, the initial state or its
   //! right-hand side is not finite (and positive where it must be) in some cell.
   void check_start_is_finite() const;
+  //! The local gas of `cell` at the initial Sigma_g with the pressure slope dlnp_dlnr
+  //! (the particle laws' reference, CellGas).
+  physics::LocalGas local_gas(int cell, double dlnp_dlnr) const;
   Config cfg_;
   Grid grid_;
   std::unique_ptr<GasDisk> disk_;

@@ -28,14 +28,20 @@ Config evolving_gas_scene(int n_cells) {
   return load_scene(file, sets);
 }
 
-// The initial state with Sigma_g times (r / au)^0.5: the MMSN's r^-1.5 becomes r^-1.
-std::vector<double> flatter_gas(const Simulation& sim) {
+// The initial state with every cell's Sigma_g times factor(r_c) [r in cm].
+template <class F>
+std::vector<double> gas_times(const Simulation& sim, F factor) {
   std::vector<double> y = sim.initial_state();
   const auto& L = sim.model().layout();
   const int slot = *L.find_cell_var("sigma_g");
   for (int i = 0; i < sim.grid().n_cells(); ++i)
-    y[L.index(i, slot)] *= std::sqrt(sim.grid().r_c(i) / units::kAu);
+    y[L.index(i, slot)] *= factor(sim.grid().r_c(i));
   return y;
+}
+
+// Sigma_g times (r / au)^0.5: the MMSN's r^-1.5 becomes r^-1.
+std::vector<double> flatter_gas(const Simulation& sim) {
+  return gas_times(sim, [](double r) { return std::sqrt(r / units::kAu); });
 }
 
 TEST(GasRefresh, EtaFollowsTheSlopeOfTheRefreshedGas) {
@@ -68,12 +74,7 @@ TEST(GasRefresh, EtaFollowsTheSlopeOfTheRefreshedGas) {
 double gas_velocity_error(int n_cells) {
   const double r0 = 30.0 * units::kAu;
   Simulation sim(evolving_gas_scene(n_cells));
-  std::vector<double> y = sim.initial_state();
-  const auto& L = sim.model().layout();
-  const int slot = *L.find_cell_var("sigma_g");
-  for (int i = 0; i < sim.grid().n_cells(); ++i)
-    y[L.index(i, slot)] *= std::exp(sim.grid().r_c(i) / r0);
-  sim.refresh_local_gas(y);
+  sim.refresh_local_gas(gas_times(sim, [&](double r) { return std::exp(r / r0); }));
   double worst = 0.0;
   for (int i = 0; i < sim.grid().n_cells(); ++i) {
     const double r = sim.grid().r_c(i);
