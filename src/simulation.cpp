@@ -273,12 +273,10 @@ Simulation::Simulation(const Config& cfg)
 
   // Stokes number: from the particles of the growth model (spec §2), or prescribed.
   const bool growth = cfg.flag("growth.enabled");
-  const GrowthStokes* growth_stokes = nullptr;  // the growth module reads its cache
   if (growth) {
     auto st = std::make_unique<GrowthStokes>(*codec_, *cell_gas_, species_,
                                              growth_options_from_config(cfg).drag);
-    growth_stokes = st.get();
-    growth_stokes_ = growth_stokes;
+    growth_stokes_ = st.get();  // the growth module reads its cache
     stokes_ = std::move(st);
   } else {
     std::vector<double> st(n);
@@ -307,9 +305,9 @@ Simulation::Simulation(const Config& cfg)
   transport_ = transport.get();
   codec_->sigma_slot = transport->sigma_slot();
   if (growth) {
-    auto g = std::make_unique<PorousGrowth>(*layout_, *codec_, *cell_gas_, *growth_stokes,
-                                            species_, growth_options_from_config(cfg),
-                                            sigma_d_max);
+    auto g = std::make_unique<PorousGrowth>(*layout_, *codec_, *cell_gas_,
+                                            *growth_stokes_, species_,
+                                            growth_options_from_config(cfg), sigma_d_max);
     transport->add_passenger(
         codec_->qm_slot);  // spec §6.2: Q_m, Q_phi ride with the dust
     if (codec_->qphi_slot >= 0) transport->add_passenger(codec_->qphi_slot);
