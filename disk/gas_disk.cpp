@@ -68,6 +68,27 @@ double Lbp74Disk::sigma_g(double r) const {
          std::exp(-std::pow(x, 2.0 - gamma_));
 }
 
+// Both closed forms are written with expm1 of the annulus' log width (log1p of its exact
+// width r2 - r1 over r1), so that a narrow annulus keeps full relative precision: no
+// difference of two nearly equal powers.
+double PowerLawDisk::mass_between(double r1, double r2) const {
+  // 2 pi sigma_1au au^2 int x^(1-p) dx, x = r/au: [x^k / k] with k = 2 - p (ln x at k =
+  // 0)
+  const double k = 2.0 - p_, ln_ratio = std::log1p((r2 - r1) / r1);
+  const double scale = 2.0 * kPi * sigma_1au_ * kAu * kAu;
+  if (k == 0.0) return scale * ln_ratio;
+  return scale * std::pow(r1 / kAu, k) * std::expm1(k * ln_ratio) / k;
+}
+
+double Lbp74Disk::mass_between(double r1, double r2) const {
+  // spec §1.2 B: with u = (r/r_c)^(2-gamma), Sigma 2 pi r dr = M e^-u du, so the mass is
+  // M (e^-u1 - e^-u2) = -M e^-u1 expm1(-(u2 - u1)); the total of r = 0..inf is M.
+  const double k = 2.0 - gamma_;
+  const double u1 = std::pow(r1 / r_c_, k);
+  const double du = u1 * std::expm1(k * std::log1p((r2 - r1) / r1));
+  return -m_disk_ * std::exp(-u1) * std::expm1(-du);
+}
+
 std::unique_ptr<GasDisk> make_disk(const Config& cfg) {
   Star star{cfg.real("star.mass_msun") * units::kMsun,
             cfg.real("star.luminosity_lsun") * units::kLsun};

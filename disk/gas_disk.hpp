@@ -35,6 +35,10 @@ class GasDisk {
   virtual std::string_view name() const = 0;
   //! Initial (and, for static gas, permanent) gas surface density [g cm^-2].
   virtual double sigma_g(double r) const = 0;
+  //! Gas mass of the annulus r1 <= r <= r2, the integral of sigma_g 2 pi r dr [g], in
+  //! closed form: what the cell-centre values of sigma_g approximate on the grid (the
+  //! run header prints both for the dust).
+  virtual double mass_between(double r1, double r2) const = 0;
 
   const Star& star() const { return star_; }
   const ThermalParams& thermal() const { return th_; }
@@ -78,6 +82,7 @@ class PowerLawDisk : public GasDisk {
       : GasDisk(star, th), sigma_1au_(sigma_1au), p_(p) {}
   std::string_view name() const override { return "powerlaw"; }
   double sigma_g(double r) const override;
+  double mass_between(double r1, double r2) const override;
 
  private:
   double sigma_1au_, p_;
@@ -92,6 +97,7 @@ class Lbp74Disk : public GasDisk {
       : GasDisk(star, th), m_disk_(m_disk), r_c_(r_c), gamma_(gamma) {}
   std::string_view name() const override { return "lbp"; }
   double sigma_g(double r) const override;
+  double mass_between(double r1, double r2) const override;
 
  private:
   double m_disk_, r_c_, gamma_;

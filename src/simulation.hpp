@@ -103,6 +103,11 @@ class Simulation {
   double dust_mass_out(std::span<const double> y) const;         //!< through r_in [g]
   double dust_mass_sublimated(std::span<const double> y) const;  //!< at the snow line [g]
   double initial_dust_mass() const { return dust_mass0_; }       //!< [g]
+  //! The dust mass of the initial profile itself on r_in..r_out, integrated exactly
+  //! (GasDisk::mass_between, split at the snow line) [g]: initial_dust_mass() is its
+  //! cell-centre quadrature, second order in the cell width. NaN for dust.init =
+  //! "gaussian_ring".
+  double profile_dust_mass() const { return profile_dust_mass_; }
   //! Planetesimal mass per channel {coagulation, SI} [g] (0 for a channel that is off).
   std::pair<double, double> planetesimal_mass(std::span<const double> y) const;
   //! Sigma_pl per channel at the cell centres [g cm^-2] (empty when off).
@@ -153,7 +158,7 @@ class Simulation {
   std::vector<BudgetTerm> budget_terms_;
   std::unique_ptr<DiskModel> model_;
   std::vector<double> sigma_d0_;
-  double sigma_scale_ = 1.0, dust_mass0_ = 0.0;
+  double sigma_scale_ = 1.0, dust_mass0_ = 0.0, profile_dust_mass_ = 0.0;
 };
 
 }  // namespace panoptic
