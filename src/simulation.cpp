@@ -771,7 +771,15 @@ std::string Simulation::summary() const {
     s << std::expm1(grid_.dlnr(0)) << " at r_in to " << std::expm1(grid_.dlnr(n - 1))
       << " at r_out, stretch " << grid_.stretch() << ")\n";
   s << "gas disk: " << disk_->name()
-    << (gas_.evolves() ? ", viscously evolving" : ", static") << "; ";
+    << (gas_.evolves() ? ", viscously evolving" : ", static") << ", ";
+  {  // the profile's gas on the grid's span (spec §1.2; for LBP, its share of M_disk)
+    const double m_gas = disk_->mass_between(grid_.r_f(0), grid_.r_f(n));
+    s << m_gas / units::kMsun << " M_sun between r_in and r_out";
+    if (cfg_.str("disk.model") == "lbp")
+      s << " (" << 100.0 * m_gas / (cfg_.real("disk.m_disk_msun") * units::kMsun)
+        << " % of disk.m_disk_msun)";
+    s << "; ";
+  }
   const double r_snow_au = disk_->r_snow() / kAu;
   if (!cfg_.flag("snowline.enabled"))
     s << "snow line off (icy solids everywhere)\n";

@@ -1,8 +1,10 @@
 """`panoptic check SCENE` (README "Scenes"): every shipped scene passes and prints the run
-it would make (grid, gas disk, state layout); the snow line is reported where it falls,
+it would make (grid, gas disk, state layout); the gas between r_in and r_out against the
+closed forms of the MMSN and LBP profiles; the snow line is reported where it falls,
 and said to be off the grid when T = T_sub lies beyond the outer or inside the inner edge
 (a warm disk printed "snow line at 13840.8 au" as if the run had one)."""
 import glob
+import math
 import os
 import subprocess
 
@@ -52,6 +54,23 @@ def main():
         c.check(ok and (note in line if note else "(" not in line.split("snow line")[-1]),
                 f"snow line {label}: {line.strip()!r} (expected {r_snow:.6g} au "
                 f"{note or 'with no note'})")
+    # the profile's gas between r_in and r_out, in closed form (spec §1.2): MMSN
+    # 2 pi Sigma_1 au^2 2 (sqrt(r_out) - sqrt(r_in)) with r in au; LBP (gamma = 1)
+    # M_disk (e^(-r_in/r_c) - e^(-r_out/r_c)), its share of M_disk in %
+    msun, au = 1.989e33, 1.496e13
+    lbp_share = math.exp(-1.0 / 60.0) - math.exp(-1000.0 / 60.0)
+    for scene, mass, share in [
+            ("fiducial.toml", 2 * math.pi * 1700 * au**2 * 2 * (math.sqrt(300) - 1) / msun,
+             None),
+            ("compact_fragmentation.toml", 0.05 * lbp_share, 100 * lbp_share)]:
+        line = gas_line(check(args.exe, os.path.join(REPO, "params", scene)))
+        shown = float(line.split(" M_sun between")[0].split(", ")[-1])
+        ok = abs(shown / mass - 1) < 1e-5
+        if share is not None:
+            pct = float(line.split("(")[1].split(" %")[0])
+            ok = ok and abs(pct / share - 1) < 1e-5
+        c.check(ok, f"{scene}: gas between r_in and r_out {line.strip()!r} "
+                f"(closed form {mass:.6g} M_sun{f', {share:.6g} %' if share else ''})")
     for label, sets, text in [
             ("off", ["snowline.enabled=false"], "snow line off"),
             ("q = 0, colder than T_sub", ["disk.q=0", "disk.T_1au=100"],
