@@ -72,8 +72,7 @@ double Lbp74Disk::sigma_g(double r) const {
 // width r2 - r1 over r1), so that a narrow annulus keeps full relative precision: no
 // difference of two nearly equal powers.
 double PowerLawDisk::mass_between(double r1, double r2) const {
-  // 2 pi sigma_1au au^2 int x^(1-p) dx, x = r/au: [x^k / k] with k = 2 - p (ln x at k =
-  // 0)
+  // 2 pi sigma_1au au^2 int x^(1-p) dx, x = r/au: [x^k/k], k = 2 - p ([ln x] at k = 0)
   const double k = 2.0 - p_, ln_ratio = std::log1p((r2 - r1) / r1);
   const double scale = 2.0 * kPi * sigma_1au_ * kAu * kAu;
   if (k == 0.0) return scale * ln_ratio;
