@@ -637,6 +637,11 @@ void Simulation::prepare_output(RunOutput& out) const {
     out.add_field("rho_int", n, "g cm^-3", "internal density phi rho0");
     out.add_field("dv", n, "cm s^-1", "collision speed used for growth (spec §3)");
     out.add_field("t_grow", n, "yr", "growth time m/|dm/dt| (inf: growth halted)");
+    if (growth_->options().erosion != physics::ErosionModel::kNone)
+      out.add_field(
+          "dv_ls", n, "cm s^-1",
+          "collision speed against the small projectiles, which erosion compares "
+          "with v_eros (spec §3, §5.1-§5.2)");
   }
 }
 
@@ -676,7 +681,8 @@ std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
   if (gas_.evolves())
     f["m_out_gas"] = {y[L.global_index(viscous_->m_out_slot())] * viscous_->mass_unit()};
   if (growth_) {
-    std::vector<double> m(n), phi(n), a(n), rho(n), dv(n), tg(n);
+    const bool erosion = growth_->options().erosion != physics::ErosionModel::kNone;
+    std::vector<double> m(n), phi(n), a(n), rho(n), dv(n), tg(n), dv_ls(erosion ? n : 0);
     for (int i = 0; i < n; ++i) {
       const double* yc = &y[L.index(i, 0)];
       const auto r = growth_->rates(i, y);
@@ -685,6 +691,7 @@ std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
       a[i] = r.a;
       rho[i] = phi[i] * species_[i].rho0;
       dv[i] = r.dv;
+      if (erosion) dv_ls[i] = r.dv_ls;
       // +inf where growth has halted exactly (a saturated erosion switch gives dm/dt = 0)
       tg[i] = r.dm_dt != 0.0 ? m[i] / std::abs(r.dm_dt) / kYr
                              : std::numeric_limits<double>::infinity();
@@ -695,6 +702,7 @@ std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
     f["rho_int"] = std::move(rho);
     f["dv"] = std::move(dv);
     f["t_grow"] = std::move(tg);
+    if (erosion) f["dv_ls"] = std::move(dv_ls);
   }
   return f;
 }

@@ -108,3 +108,48 @@ def alpha_cs_h(config, r_au):
 def text(v):
     """An HDF5 string attribute as str (h5py gives bytes for fixed-length strings)."""
     return v.decode() if isinstance(v, bytes) else str(v)
+
+
+YR = 3.156e7  # [s]
+
+
+def growth_along_paths(r, k):
+    """What the transport and the growth law do to ln m of each cell at snapshot k of run
+    r (diffusion off), worked out from the snapshots, for the growth tests on the grid
+    (test_fragmentation_limit, test_erosion_stall). Snapshots k - 1 and k + 1 must lie
+    just before and after k (d ln m/dt is their centred difference). Returns a dict of
+    per-cell arrays:
+      t_coag     m / (dm/dt)_coag [s], (dm/dt)_coag = f_grow 2 sqrt(pi) a^2 dv Sigma_d / h_d
+                 (spec §4.1) with h_d = H / sqrt(1 + St/alpha (1 + 2 St)/(1 + St)) (§2)
+      continuum  t_coag (d ln m/dt + v_r d ln m/dr), v_r the mean of the cell's two faces
+                 and d ln m/dr centred: the growth factor the transport equation of ln m
+                 (spec §6.2) asks for, to the scheme's O(dr/r)
+      discrete   t_coag (d ln m/dt - inflow terms): the same in the first-order upwind
+                 scheme's own form. With Q_m = Sigma_d ln m carried by the dust flow,
+                 A_i Sigma_i d ln m_i/dt = sum over the faces where dust flows in, of the
+                 inflow [g/s] times (ln m of the upwind cell - ln m_i), plus A_i Sigma_i
+                 times the growth rate (the planetesimal sinks take Q_m and Sigma_d in
+                 proportion and leave ln m alone), so this equals the growth factor to
+                 the time difference's and the integration's errors."""
+    cfg = r.config
+    f_grow = cfg.get("growth", {}).get("f_grow", 1.0)
+    H, alpha = r.disk["h_g"], r.disk["alpha"]
+    rc = r.r_c * SPEC_AU
+    m, a, dv = (r.snapshots[n][k] for n in ("m", "a", "dv"))
+    st, sigma_d = r.snapshots["St"][k], r.snapshots["sigma_d"][k]
+    h_d = H / np.sqrt(1 + st / alpha * (1 + 2 * st) / (1 + st))
+    t_coag = m / (f_grow * 2 * np.sqrt(np.pi) * a**2 * dv * sigma_d / h_d)
+    x = np.log(m)
+    dx_dt = (np.log(r.snapshots["m"][k + 1]) - np.log(r.snapshots["m"][k - 1])) / (
+        (r.time[k + 1] - r.time[k - 1]) * YR)
+    v_r = 0.5 * (r.snapshots["v_r"][k][:-1] + r.snapshots["v_r"][k][1:])
+    continuum = t_coag * (dx_dt + v_r * np.gradient(x, rc))
+    mdot = r.snapshots["mdot_d"][k]  # [g/s] on the faces, positive outward
+    n = len(x)
+    inflow = np.zeros(n)
+    outer_in = mdot[1:] < 0  # dust enters cell i through its outer face i + 1
+    inflow[:-1] += np.where(outer_in[:-1], -mdot[1:-1] * (x[1:] - x[:-1]), 0.0)
+    inner_in = mdot[:-1] > 0  # ... or through its inner face i
+    inflow[1:] += np.where(inner_in[1:], mdot[1:-1] * (x[:-1] - x[1:]), 0.0)
+    discrete = t_coag * (dx_dt - inflow / (r.area * sigma_d))
+    return {"t_coag": t_coag, "continuum": continuum, "discrete": discrete}
