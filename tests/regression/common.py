@@ -129,8 +129,11 @@ def growth_along_paths(r, k):
                  A_i Sigma_i d ln m_i/dt = sum over the faces where dust flows in, of the
                  inflow [g/s] times (ln m of the upwind cell - ln m_i), plus A_i Sigma_i
                  times the growth rate (the planetesimal sinks take Q_m and Sigma_d in
-                 proportion and leave ln m alone), so this equals the growth factor to
-                 the time difference's and the integration's errors."""
+                 proportion, to the decoder's regularisation (eps/Sigma_d)^2 with eps =
+                 10 solver.atol_sigma max Sigma_d0, and leave ln m alone; in the fiducial
+                 scene's converting cells at Sigma_d/Sigma_g ~ 1e-6, where t_coag is
+                 ~1e4 yr, that regularisation is 2 % of the growth), so this equals the
+                 growth factor to the time difference's and the integration's errors."""
     cfg = r.config
     f_grow = cfg.get("growth", {}).get("f_grow", 1.0)
     H, alpha = r.disk["h_g"], r.disk["alpha"]
