@@ -147,12 +147,22 @@ def growth_along_paths(r, k):
         (r.time[k + 1] - r.time[k - 1]) * YR)
     v_r = 0.5 * (r.snapshots["v_r"][k][:-1] + r.snapshots["v_r"][k][1:])
     continuum = t_coag * (dx_dt + v_r * np.gradient(x, rc))
+    discrete = t_coag * carried_rate(r, k, lambda j: np.log(r.snapshots["m"][j]))
+    return {"t_coag": t_coag, "continuum": continuum, "discrete": discrete}
+
+
+def carried_rate(r, k, values):
+    """The rate of change [s^-1] of a particle attribute carried by the dust flow (ln m
+    with Q_m, ln(1/phi) with Q_phi: spec §6.2), following the particles, at snapshot k
+    (k - 1, k + 1 just around it; diffusion off), in the first-order upwind scheme's own
+    form: d x_i/dt minus, for each face where dust flows in, the inflow [g/s] times (x of
+    the upwind cell - x_i) over A_i Sigma_i. `values(j)` gives x at snapshot j."""
+    x = values(k)
+    dx_dt = (values(k + 1) - values(k - 1)) / ((r.time[k + 1] - r.time[k - 1]) * YR)
     mdot = r.snapshots["mdot_d"][k]  # [g/s] on the faces, positive outward
-    n = len(x)
-    inflow = np.zeros(n)
+    inflow = np.zeros(len(x))
     outer_in = mdot[1:] < 0  # dust enters cell i through its outer face i + 1
     inflow[:-1] += np.where(outer_in[:-1], -mdot[1:-1] * (x[1:] - x[:-1]), 0.0)
     inner_in = mdot[:-1] > 0  # ... or through its inner face i
     inflow[1:] += np.where(inner_in[1:], mdot[1:-1] * (x[:-1] - x[1:]), 0.0)
-    discrete = t_coag * (dx_dt - inflow / (r.area * sigma_d))
-    return {"t_coag": t_coag, "continuum": continuum, "discrete": discrete}
+    return dx_dt - inflow / (r.area * r.snapshots["sigma_d"][k])
