@@ -111,6 +111,30 @@ def text(v):
 
 
 YR = 3.156e7  # [s]
+M0_SIL = 1.26e-14  # [g] the heavier monomer (silicate, 0.1 um, 3 g cm^-3; run header)
+
+
+def run_with_triples(exe, scene, out, centres):
+    """Runs `scene` for the growth tests on the grid (test_fragmentation_limit,
+    test_erosion_stall, test_porosity_along_paths): diffusion off, rtol 1e-7, snapshots
+    in triples 1e-4 apart (relative) around each of `centres` [yr], the run ending at
+    the last. Returns the run and the indices of the triples' middle snapshots (for
+    growth_along_paths and carried_rate, which difference k - 1 and k + 1)."""
+    times = ", ".join(f"{t * (1 + d):.6g}" for t in centres for d in (-1e-4, 0, 1e-4))
+    run(exe, scene, out,
+        ["transport.diffusion=false", "solver.rtol=1e-7", f"output.times_yr=[{times}]",
+         f"output.t_end_yr={centres[-1] * (1 + 1e-4):.6g}"])
+    return load_run(out), [3 * j + 2 for j in range(len(centres))]
+
+
+def beside_snow_face(r):
+    """Cells of run r beside its snow-line face, two on each side (and the cell that
+    holds r_snow): there the sublimation makes ln m jump, so the growth tests leave
+    them out."""
+    i_snow = int(np.searchsorted(r.r_f, r.r_snow_au))
+    near = np.zeros(len(r.r_c), dtype=bool)
+    near[max(i_snow - 3, 0):i_snow + 2] = True
+    return near
 
 
 def growth_along_paths(r, k):

@@ -23,31 +23,22 @@ The cells beside the snow-line face (two on each side) are left out: there the
 sublimation makes ln m jump."""
 import numpy as np
 
-from common import Checks, growth_along_paths, load_run, parse_args, run
-
-M0_SIL = 1.26e-14  # [g] the heavier monomer (silicate, 0.1 um, 3 g cm^-3; run header)
-
+from common import (M0_SIL, Checks, beside_snow_face, growth_along_paths, load_run, parse_args,
+                    run, run_with_triples)
 
 def main():
     args = parse_args()
     c = Checks()
-    out = f"{args.workdir}/erosion_40.h5"
-    run(args.exe, "params/erosion_40.toml", out,
-        ["transport.diffusion=false", "solver.rtol=1e-7",
-         "output.times_yr=[0.9999e4, 1e4, 1.0001e4, 0.9999e5, 1e5, 1.0001e5, "
-         "0.9999e6, 1e6, 1.0001e6]",
-         "output.t_end_yr=1.0001e6"])
-    r = load_run(out)
+    r, middles = run_with_triples(args.exe, "params/erosion_40.toml",
+                                  f"{args.workdir}/erosion_40.h5", (1e4, 1e5, 1e6))
     unit = r.units.get("snapshots/dv_ls")
     c.check("dv_ls" in r.snapshots and unit == "cm s^-1", f"/snapshots/dv_ls written, units {unit!r}")
     ero = r.config["erosion"]
     c.check(ero["model"] == "halt", "erosion_40 uses halt")
     v_eros, width = 100.0 * ero["v_eros_m_s"], ero["width"]
-    i_snow = int(np.searchsorted(r.r_f, r.r_snow_au))
-    near_snow = np.zeros(len(r.r_c), dtype=bool)
-    near_snow[max(i_snow - 3, 0):i_snow + 2] = True
+    near_snow = beside_snow_face(r)
 
-    for k in (2, 5, 8):  # the middle snapshot of each triple
+    for k in middles:
         t = r.time[k]
         s = {n: r.snapshots[n][k] for n in ("m", "dv_ls", "St", "sigma_d", "sigma_g")}
         paths = growth_along_paths(r, k)

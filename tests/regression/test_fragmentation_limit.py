@@ -38,35 +38,25 @@ import math
 
 import numpy as np
 
-from common import Checks, growth_along_paths, load_run, parse_args, run
-
-M0_SIL = 1.26e-14  # [g] the heavier monomer (silicate, 0.1 um, 3 g cm^-3; run header)
-
+from common import M0_SIL, Checks, beside_snow_face, growth_along_paths, parse_args, run_with_triples
 
 def main():
     args = parse_args()
     c = Checks()
-    out = f"{args.workdir}/compact_frag.h5"
-    run(args.exe, "params/compact_fragmentation.toml", out,
-        ["transport.diffusion=false", "solver.rtol=1e-7",
-         "output.times_yr=[0.9999e5, 1e5, 1.0001e5, 0.9999e6, 1e6, 1.0001e6]",
-         "output.t_end_yr=1.0001e6"])
-    r = load_run(out)
+    r, middles = run_with_triples(args.exe, "params/compact_fragmentation.toml",
+                                  f"{args.workdir}/compact_frag.h5", (1e5, 1e6))
     cfg = r.config
     v_frag = 100.0 * cfg["fragmentation"]["v_frag_ice_m_s"]
     c.check(cfg["fragmentation"]["v_frag_sil_m_s"] == cfg["fragmentation"]["v_frag_ice_m_s"],
             "one v_frag for both species")
     eps = cfg.get("growth", {}).get("eps", 0.5)
     alpha, c_s = r.disk["alpha"], r.disk["c_s"]
-    # the cells beside the snow-line face (two on each side)
-    i_snow = int(np.searchsorted(r.r_f, r.r_snow_au))
-    near_snow = np.zeros(len(r.r_c), dtype=bool)
-    near_snow[max(i_snow - 3, 0):i_snow + 2] = True
+    near_snow = beside_snow_face(r)
     dlnr = np.log(r.r_f[1:] / r.r_f[:-1]).max()
 
     y_a = 1.6
     k_oc07 = 2 * y_a - (1 + eps) + 2 / (1 + eps) * (1 / (1 + y_a) + eps**3 / (y_a + eps))
-    for k in (2, 5):  # the middle snapshot of each triple
+    for k in middles:
         t = r.time[k]
         snap = {name: r.snapshots[name][k] for name in ("dv", "St", "sigma_d", "sigma_g", "m")}
         st, m = snap["St"], snap["m"]

@@ -28,19 +28,15 @@ law along the paths, the transport is checked by test_fragmentation_limit and
 test_erosion_stall.)"""
 import numpy as np
 
-from common import SPEC_AU, SPEC_G, SPEC_MH, Checks, carried_rate, load_run, parse_args, run
+from common import (SPEC_AU, SPEC_G, SPEC_MH, Checks, beside_snow_face, carried_rate, parse_args,
+                    run_with_triples)
 
 
 def main():
     args = parse_args()
     c = Checks()
-    out = f"{args.workdir}/fiducial.h5"
-    centres = (1e3, 1e4, 1e5, 1e6)
-    times = ", ".join(f"{t * (1 + d):.6g}" for t in centres for d in (-1e-4, 0, 1e-4))
-    run(args.exe, "params/fiducial.toml", out,
-        ["transport.diffusion=false", "solver.rtol=1e-7", f"output.times_yr=[{times}]",
-         f"output.t_end_yr={centres[-1] * (1 + 1e-4):.6g}"])
-    r = load_run(out)
+    r, middles = run_with_triples(args.exe, "params/fiducial.toml", f"{args.workdir}/fiducial.h5",
+                                  (1e3, 1e4, 1e5, 1e6))
     cfg, mat, por = r.config, r.config["material"], r.config["porosity"]
     a0 = mat["a0_um"] * 1e-4
     e_roll = 6 * np.pi**2 * mat["ice_gamma"] * mat["rolling_radius_factor"] * a0 * \
@@ -51,11 +47,10 @@ def main():
     mu, sigma_mol = cfg["disk"]["mu"], cfg["disk"]["sigma_mol"]
     omega, eta, H = r.disk["omega_k"], np.abs(r.disk["eta"]), r.disk["h_g"]
     v_k = omega * r.r_c * SPEC_AU
-    i_snow = int(np.searchsorted(r.r_f, r.r_snow_au))
-    ice = np.arange(len(r.r_c)) >= i_snow + 2
+    ice = ~beside_snow_face(r) & (r.r_c > r.r_snow_au)
 
     found = {"hit-and-stick": 0, "compression": 0, "floor": 0}
-    for k in (3 * j + 2 for j in range(len(centres))):  # the middle of each triple
+    for k in middles:
         t = r.time[k]
         s = {n: r.snapshots[n][k] for n in ("m", "phi", "a", "dv", "St", "sigma_d", "sigma_g")}
         m, phi, st = s["m"], s["phi"], s["St"]
