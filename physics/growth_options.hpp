@@ -14,6 +14,10 @@ struct Species {
   double m0 = 0.0;      //!< monomer mass [g]
   double e_roll = 0.0;  //!< rolling energy [erg] (spec §0)
   double v_frag = 6e3;  //!< fragmentation speed [cm s^-1] (spec §5.3)
+  //! Whether its aggregates fragment where GrowthOptions::fragmentation is on
+  //! (fragmentation.species: silicate only, spec §11 #17 with §5.3's unfragmented
+  //! porous ice).
+  bool fragments = true;
 };
 
 enum class ErosionModel { kNone, kHalt, kBalance };

@@ -64,7 +64,8 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
   // factor multiplies the similar-size term only: under E2 the small-projectile term is
   // another kind of collision, and a product of the two signed terms would turn net
   // erosion plus fragmentation into growth.
-  const T frag = o.fragmentation ? fragmentation_factor(r.dv, sp.v_frag) : T(1.0);
+  const T frag =
+      o.fragmentation && sp.fragments ? fragmentation_factor(r.dv, sp.v_frag) : T(1.0);
   T factor = frag;
   r.dv_ls = T(0.0);
   if (o.erosion != ErosionModel::kNone)  // spec §5.1-§5.2

@@ -294,9 +294,16 @@ std::vector<KeySpec> make_keys() {
       when({growth_on()},
            flag("fragmentation.enabled", "false", "similar-size fragmentation (§5.3)")),
       when({growth_on(), is("fragmentation.enabled", {"true"})},
+           choice("fragmentation.species", "both", {"both", "silicate", "ice"},
+                  "which monomer species fragment: both, or only silicate (inside the "
+                  "snow line; spec §11 #17, with porous ice unfragmented, §5.3) or only "
+                  "ice")),
+      when({growth_on(), is("fragmentation.enabled", {"true"}),
+            is("fragmentation.species", {"both", "ice"})},
            positive("fragmentation.v_frag_ice_m_s", "60.0", "m s^-1",
                     "ice fragmentation speed")),
-      when({growth_on(), is("fragmentation.enabled", {"true"})},
+      when({growth_on(), is("fragmentation.enabled", {"true"}),
+            is("fragmentation.species", {"both", "silicate"})},
            positive("fragmentation.v_frag_sil_m_s", "5.0", "m s^-1",
                     "silicate fragmentation speed")),
       when({growth_on()},

@@ -69,6 +69,9 @@ physics::Species species_from_config(const Config& cfg, const std::string& sp) {
   s.m0 = contact.m0;
   s.e_roll = contact.e_roll;
   s.v_frag = 100.0 * cfg.real("fragmentation.v_frag_" + sp + "_m_s");
+  // fragmentation.species: "both", or only "silicate" (sp = "sil") or "ice"
+  const std::string& which = cfg.str("fragmentation.species");
+  s.fragments = which == "both" || which.starts_with(sp);
   return s;
 }
 

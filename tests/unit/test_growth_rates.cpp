@@ -426,6 +426,45 @@ TEST(GrowthFragmentation, FactorAndLimits) {
   EXPECT_NEAR(ratio(fast, 1.0), -1.0, 1e-6);  // 1 cm/s: -1 + 6.3e-7
 }
 
+TEST(GrowthFragmentation, OnlyTheSpeciesTheSceneNamesFragment) {
+  // fragmentation.species = "silicate" (spec §11 #17: silicates inside the snow line
+  // fragment at 5 m/s; §5.3: porous ice does not): the ice species' rates are those
+  // without fragmentation, bit for bit, and the silicate's carry the factor.
+  const std::string file = std::string(PANOPTIC_SOURCE_DIR) + "/params/fiducial.toml";
+  const auto species = [&](const std::vector<std::string>& set) {
+    const panoptic::Config cfg = panoptic::load_scene(file, set);
+    return std::pair{panoptic::species_from_config(cfg, "ice"),
+                     panoptic::species_from_config(cfg, "sil")};
+  };
+  const std::vector<std::string> on{"fragmentation.enabled=true"};
+  std::vector<std::string> sil_only = on, ice_only = on;
+  sil_only.push_back("fragmentation.species=\"silicate\"");
+  ice_only.push_back("fragmentation.species=\"ice\"");
+  EXPECT_TRUE(species(on).first.fragments);
+  EXPECT_TRUE(species(on).second.fragments);
+  EXPECT_FALSE(species(sil_only).first.fragments);
+  EXPECT_TRUE(species(sil_only).second.fragments);
+  EXPECT_TRUE(species(ice_only).first.fragments);
+  EXPECT_FALSE(species(ice_only).second.fragments);
+  EXPECT_EQ(species(sil_only).second.v_frag, 500.0);  // 5 m/s, the scene's default
+
+  // The fast state of FactorAndLimits (dv = 17.8 m/s > 5 m/s) at 5 au.
+  const LocalGas gas = mmsn_gas(5.0);
+  const double m = 1e8, phi = 5e-4, st = 0.20427797089107294;
+  GrowthOptions none = plain_options(), frag = plain_options();
+  frag.fragmentation = true;
+  const auto [ice, sil] = species(sil_only);
+  const auto r_ice = particle_rates(kSigmaD, m, phi, st, gas, ice, frag);
+  const auto r_ice_off = particle_rates(kSigmaD, m, phi, st, gas, ice, none);
+  EXPECT_EQ(r_ice.dm_dt, r_ice_off.dm_dt);
+  EXPECT_EQ(r_ice.dlnphi_dt, r_ice_off.dlnphi_dt);
+  const auto r_sil = particle_rates(kSigmaD, m, phi, st, gas, sil, frag);
+  const auto r_sil_off = particle_rates(kSigmaD, m, phi, st, gas, sil, none);
+  EXPECT_NEAR(r_sil.dm_dt / r_sil_off.dm_dt, fragmentation_factor(r_sil.dv, 500.0),
+              1e-13);
+  EXPECT_LT(r_sil.dm_dt, 0.0);  // dv > v_frag: loss
+}
+
 TEST(GrowthBouncing, OffAboveOnBelowPhiBounce) {
   // Bouncing (spec §5.3): growth stops smoothly for compact aggregates, phi >= phi_bounce
   // = 0.3; unaffected for porous ones. Ratio to the no-bouncing rate at m = 1e3 g.
