@@ -145,18 +145,6 @@ bool ends_with(std::string_view s, std::string_view suffix) {
   return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
 }
 
-// True when the file begins with the 8-byte HDF5 signature (a file the program wrote
-// has no user block, so the signature is at offset 0; a truncated file keeps it).
-bool has_hdf5_signature(const fs::path& path) {
-  static constexpr char kSignature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
-  char head[8] = {};
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return false;
-  const std::size_t n = std::fread(head, 1, sizeof head, f);
-  std::fclose(f);
-  return n == sizeof head && std::memcmp(head, kSignature, sizeof head) == 0;
-}
-
 // A scene value as TOML, for messages.
 std::string value_text(const ConfigValue& v) {
   struct Visitor {
@@ -314,6 +302,18 @@ Checkpoint read_checkpoint(const fs::path& path) {
   return chk;
 }
 
+bool is_checkpoint_file(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec) || !has_hdf5_signature(path)) return false;
+  try {
+    const h5::Handle f = h5::open_file(path.string(), false);
+    return h5::has_attr(f.get(), "format") &&
+           h5::get_attr_string(f.get(), "format") == kFormat;
+  } catch (const IoError&) {
+    return false;
+  }
+}
+
 RestartPoint load_restart_point(const fs::path& path) {
   try {
     return {read_checkpoint(path), path, ""};
@@ -381,7 +381,11 @@ std::vector<std::string> check_compatible(const Checkpoint& chk, const fs::path&
   std::vector<std::string> allowed;
   for (const std::string& key : changed_keys(before, cfg)) {
     if (may_change_on_restart(key)) {
-      allowed.push_back(key);
+      const auto text_of = [&](const Config& c) {
+        const auto it = c.values_.find(key);
+        return it == c.values_.end() ? std::string("unset") : value_text(it->second);
+      };
+      allowed.push_back(key + " = " + text_of(cfg) + " (was " + text_of(before) + ")");
       continue;
     }
     const std::string was = value_text(before.values_.at(key));
@@ -477,10 +481,11 @@ RunOutput continue_output(const RestartPoint& restart, const fs::path& output,
     if (t_yr.size() > n_keep)  // said aloud: a copied or older checkpoint cuts a run
       std::fprintf(
           stderr,
-          "panoptic: warning: %s: its %zu snapshots after the checkpoint's (t = "
-          "%.6g yr, snapshot %ld) up to t = %.6g yr are cut and computed again\n",
-          path.c_str(), t_yr.size() - n_keep, chk.t / units::kYr, chk.snapshot_index,
-          t_yr.back());
+          "panoptic: warning: %s: its %zu snapshot%s after the checkpoint's (t = "
+          "%.6g yr, snapshot %ld) up to t = %.6g yr %s cut and computed again\n",
+          path.c_str(), t_yr.size() - n_keep, t_yr.size() - n_keep == 1 ? "" : "s",
+          chk.t / units::kYr, chk.snapshot_index, t_yr.back(),
+          t_yr.size() - n_keep == 1 ? "is" : "are");
   }
   RunOutput out(path, ContinueRun{n_keep, chk.row_digests});
   char line[160];
@@ -490,7 +495,8 @@ RunOutput continue_output(const RestartPoint& restart, const fs::path& output,
       line + chk_name + " by panoptic " PANOPTIC_VERSION " (" PANOPTIC_GIT_SHA ")";
   if (!changed.empty()) {
     note += "; changed:";
-    for (const std::string& key : changed) note += " " + key;
+    for (std::size_t k = 0; k < changed.size(); ++k)
+      note += (k ? ", " : " ") + changed[k];
   }
   const std::string before = out.root_attr("restarts");
   out.set_root_attr("restarts", before.empty() ? note : before + "\n" + note);

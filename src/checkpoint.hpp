@@ -66,6 +66,11 @@ std::filesystem::path previous_checkpoint_path(const std::filesystem::path& chec
 //! IoError naming the file; no temporary file is left behind.
 void write_checkpoint(const std::filesystem::path& path, const Checkpoint& chk);
 
+//! Whether `path` is a file that panoptic wrote as a checkpoint (an HDF5 file with the
+//! checkpoint format attribute); false for anything else, including a file it cannot
+//! read. A new run replaces only such files (main.cpp).
+bool is_checkpoint_file(const std::filesystem::path& path);
+
 //! Reads and verifies a checkpoint: throws IoError saying what is wrong (missing,
 //! truncated or not HDF5, incomplete, checksum mismatch) and naming the file.
 Checkpoint read_checkpoint(const std::filesystem::path& path);
@@ -90,8 +95,8 @@ bool may_change_on_restart(std::string_view key);
 //! Throws ConfigError (exit 2) when `cfg` cannot continue `chk`: names every key whose
 //! value differs from the checkpoint's scene and may not change, with both values, or
 //! the differing layout (StateLayout::signature); says what may change and the fix.
-//! Returns the keys
-//! that differ and may (for the output's record of restarts).
+//! Returns the keys that differ and may, as "key = value (was value)" (for the output's
+//! record of restarts and the run's notice).
 std::vector<std::string> check_compatible(const Checkpoint& chk,
                                           const std::filesystem::path& chk_path,
                                           const Config& cfg, const StateLayout& layout);

@@ -32,6 +32,27 @@ void rename_or_throw(const std::filesystem::path& from, const std::filesystem::p
                   std::strerror(errno) + ")");
 }
 
+bool has_hdf5_signature(const std::filesystem::path& path) {
+  static constexpr char kSignature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+  char head[8] = {};
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return false;
+  const std::size_t n = std::fread(head, 1, sizeof head, f);
+  std::fclose(f);
+  return n == sizeof head && std::memcmp(head, kSignature, sizeof head) == 0;
+}
+
+void refuse_to_overwrite_non_hdf5(const std::filesystem::path& output) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(output, ec)) return;
+  if (std::filesystem::file_size(output, ec) == 0 || ec) return;
+  if (!has_hdf5_signature(output))
+    throw IoError(
+        output.string() +
+        ": exists and is not an HDF5 file; --overwrite replaces only an earlier "
+        "output: move the file or choose another with -o");
+}
+
 void refuse_output_is_input(const std::filesystem::path& output,
                             const std::filesystem::path& input, const std::string& what) {
   std::error_code ec;

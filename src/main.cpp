@@ -8,6 +8,7 @@
 //   and mass budget.
 // Exit codes: 0 ok, 2 bad input, 3 solver failure, 4 I/O error, 75 stopped to be
 // restarted (SIGINT, SIGTERM or --max-wall; EX_TEMPFAIL of sysexits.h: "try again").
+#include <hdf5.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -133,15 +134,31 @@ fs::path default_output(const Config& cfg) {
 }
 
 //! A new output file with /grid, /disk and the snapshot fields declared. Checkpoints
-//! left next to it by a run it replaces are removed: they belong to that run.
+//! left next to it by a run it replaces are removed (they belong to that run), with
+//! --overwrite only, and only files panoptic wrote as checkpoints: anything else at
+//! those paths, or a checkpoint without --overwrite, stops the run before a file is
+//! touched (exit 4).
 RunOutput new_output(const Config& cfg, const Simulation& sim, const fs::path& path,
                      bool overwrite) {
+  const fs::path chk = checkpoint_path(path);
+  std::error_code ec;
+  for (const fs::path& p : {chk, previous_checkpoint_path(chk)}) {
+    if (!fs::exists(fs::symlink_status(p, ec))) continue;
+    if (!is_checkpoint_file(p))
+      throw IoError(p.string() +
+                    ": exists and is not a panoptic checkpoint, but a run writing " +
+                    path.string() +
+                    " keeps its checkpoints there; move that file or choose another -o");
+    if (!overwrite)
+      throw IoError(p.string() + ": a checkpoint of an earlier run to " + path.string() +
+                    "; continue that run with --restart " + chk.string() +
+                    ", or pass --overwrite to start a new one (the checkpoint is "
+                    "removed)");
+  }
   RunOutput out(path, overwrite,
                 {cfg.file().stem().string(), cfg.resolved_toml(), PANOPTIC_GIT_SHA,
                  PANOPTIC_VERSION});
   sim.prepare_output(out);
-  const fs::path chk = checkpoint_path(path);
-  std::error_code ec;
   for (const fs::path& stale : {chk, previous_checkpoint_path(chk)})
     if (fs::remove(stale, ec))
       std::printf("removed %s: a checkpoint of the run this output replaces\n",
@@ -224,6 +241,15 @@ int run(const RunArgs& a) {
                    restart->chk.t / units::kYr, restart->chk.snapshot_index);
     try {
       changed = check_compatible(restart->chk, restart->path, cfg, layout);
+      // The keys a restart may change (output times, solver settings) change the run
+      // silently otherwise: a restart without the stopped run's --set options would
+      // continue it with the scene file's values.
+      for (const std::string& c : changed)
+        std::fprintf(stderr,
+                     "panoptic: note: this restart changes %s; to continue the run "
+                     "as it was, repeat its --set options (the restart command it "
+                     "printed)\n",
+                     c.c_str());
     } catch (const ConfigError& e) {
       if (a.preset.empty()) throw;
       std::string sets;
@@ -495,7 +521,27 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
 
 }  // namespace
 
+namespace {
+int run_command_line(int argc, char** argv);
+}  // namespace
+
+//! A write that failed (disk full, quota) can leave HDF5 holding a file it cannot close,
+//! and its clean-up at exit (H5_term_library) then crashes on it (SIGSEGV instead of
+//! the error's exit code; HDF5 1.10.8, sec2 driver). Every Handle is closed by the
+//! time the command returns, so a file still open here is such a file: after an error
+//! the process ends without HDF5's clean-up, with the error's exit code; the files that
+//! did close are complete on disk.
 int main(int argc, char** argv) {
+  const int code = run_command_line(argc, argv);
+  if (code != 0 && H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE) > 0) {
+    std::fflush(nullptr);
+    std::_Exit(code);
+  }
+  return code;
+}
+
+namespace {
+int run_command_line(int argc, char** argv) {
   // 1 command line
   CLI::App app{
       "panoptic: dust evolution of a whole protoplanetary disk, from monomers to "
@@ -598,7 +644,8 @@ int main(int argc, char** argv) {
       "(--task I); rerun to resume");
   scan_cmd->add_option("scan_file", scan_opts.scan_file, "scan file (TOML)")->required();
   scan_cmd->add_option("-o,--output", scan_opts.dir,
-                       "scan directory (manifest, runs/, summary)");
+                       "scan directory (manifest, runs/, summary); required "
+                       "unless --dry-run");
   scan_cmd->add_option("-j,--jobs", scan_opts.jobs, "runs at once (per MPI rank)")
       ->capture_default_str();
   std::string task_text;
@@ -674,3 +721,4 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+}  // namespace

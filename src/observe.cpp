@@ -220,6 +220,10 @@ int observe(const ObserveArgs& a) {
   for (const fs::path& c : {chk, previous_checkpoint_path(chk)})
     refuse_output_is_input(out_path, c, "a checkpoint of the run");
   std::error_code ec;
+  if (fs::is_directory(out_path, ec))
+    throw IoError(out_path.string() +
+                  ": is a directory; give the output file's name with -o");
+  if (a.overwrite) refuse_to_overwrite_non_hdf5(out_path);
   if (fs::exists(out_path, ec) && !a.overwrite)
     throw IoError(out_path.string() +
                   ": output file exists; pass --overwrite to replace it, or choose "
@@ -563,9 +567,10 @@ int observe(const ObserveArgs& a) {
   }
   fs::rename(tmp, out_path, ec);
   if (ec) {
+    const std::string why = ec.message();  // before remove() sets ec again
     fs::remove(tmp, ec);
     throw IoError(out_path.string() + ": cannot rename the finished file into place (" +
-                  ec.message() + ")");
+                  why + ")");
   }
 
   // 7 report

@@ -91,11 +91,34 @@ std::string rebuild(const std::filesystem::path& path) {
 
 }  // namespace
 
+std::string write_failure_hint(const std::filesystem::path& path) {
+  const std::filesystem::path dir =
+      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (::access(dir.c_str(), W_OK) != 0)
+    return " (" + dir.string() + ": " + std::strerror(errno) +
+           "); write the output elsewhere with -o";
+  if (std::filesystem::exists(path) && ::access(path.c_str(), W_OK) != 0)
+    return " (" + std::string(std::strerror(errno)) +
+           "); write the output elsewhere with -o";
+  std::error_code ec;
+  const auto space = std::filesystem::space(dir, ec);
+  if (!ec && space.available < (std::uintmax_t{1} << 20))
+    return " (the file system of " + dir.string() + " has " +
+           std::to_string(space.available) +
+           " bytes free: the disk or quota is full); make room or write elsewhere with "
+           "-o";
+  return "";
+}
+
 RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
                      const RunMetadata& meta)
     : path_(path) {
   h5::quiet_errors();
   std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw IoError(path.string() +
+                  ": is a directory; give the output file's name with -o");
+  if (overwrite) refuse_to_overwrite_non_hdf5(path);
   if (std::filesystem::exists(path, ec) && !overwrite)
     throw IoError(
         path.string() +
@@ -107,17 +130,27 @@ RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
       throw IoError(path.parent_path().string() + ": cannot create directory (" +
                     ec.message() + ")");
   }
-  file_ = h5::create_file(path.string());
-  run_id_ = new_run_id();
-  h5::set_attr(file_.get(), "run_id", run_id_);
-  h5::set_attr(file_.get(), "scene", meta.scene);
-  h5::set_attr(file_.get(), "config_toml", meta.config_toml);
-  h5::set_attr(file_.get(), "git_sha", meta.git_sha);
-  h5::set_attr(file_.get(), "version", meta.version);
-  ensure_group("snapshots");
-  h5::Handle g = h5::open_group(file_.get(), "snapshots");
-  h5::create_stack(g.get(), "time", 0, "yr", "simulated time of each snapshot");
-  flush();
+  try {
+    file_ = h5::create_file(path.string());
+    run_id_ = new_run_id();
+    h5::set_attr(file_.get(), "run_id", run_id_);
+    h5::set_attr(file_.get(), "scene", meta.scene);
+    h5::set_attr(file_.get(), "config_toml", meta.config_toml);
+    h5::set_attr(file_.get(), "git_sha", meta.git_sha);
+    h5::set_attr(file_.get(), "version", meta.version);
+    ensure_group("snapshots");
+    h5::Handle g = h5::open_group(file_.get(), "snapshots");
+    h5::create_stack(g.get(), "time", 0, "yr", "simulated time of each snapshot");
+    flush();
+  } catch (const IoError& e) {
+    // a stub without a snapshot is of no use, and a half-written one would not read:
+    // removed (the existing file it replaces is gone already, truncated by the create)
+    const std::string hint = write_failure_hint(path);
+    file_.reset();
+    std::filesystem::remove(path, ec);
+    if (std::string_view(e.what()).starts_with(path.string())) throw;
+    throw IoError(path.string() + ": " + e.what() + hint);
+  }
 }
 
 RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path_(path) {
@@ -335,7 +368,8 @@ void RunOutput::write_solver(const SolverStats& s, double wall_s,
 
 void RunOutput::flush() {
   if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0)
-    throw IoError(path_.string() + ": flushing the HDF5 file failed");
+    throw IoError(path_.string() + ": flushing the HDF5 file failed" +
+                  write_failure_hint(path_));
 }
 
 }  // namespace panoptic

@@ -299,11 +299,11 @@ std::vector<KeySpec> make_keys() {
                   "snow line; spec §11 #17, with porous ice unfragmented, §5.3) or only "
                   "ice")),
       when({growth_on(), is("fragmentation.enabled", {"true"}),
-            is("fragmentation.species", {"both", "ice"})},
+            one_of("fragmentation.species", {"both", "ice"})},
            positive("fragmentation.v_frag_ice_m_s", "60.0", "m s^-1",
                     "ice fragmentation speed")),
       when({growth_on(), is("fragmentation.enabled", {"true"}),
-            is("fragmentation.species", {"both", "silicate"})},
+            one_of("fragmentation.species", {"both", "silicate"})},
            positive("fragmentation.v_frag_sil_m_s", "5.0", "m s^-1",
                     "silicate fragmentation speed")),
       when({growth_on()},

@@ -354,9 +354,12 @@ TEST(CheckpointCompatibility, OutputTimesSolverAndCheckpointKeysMayChange) {
       scene({"output.t_end_yr=1e6", "output.n_snapshots=10", "solver.rtol=1e-8",
              "checkpoint.every_snapshots=3", "meta.description=\"x\""});
   const auto changed = check_compatible(c, "run.chk.h5", s.cfg, s.layout);
-  EXPECT_EQ(changed, (std::vector<std::string>{"meta.description", "solver.rtol",
-                                               "checkpoint.every_snapshots",
-                                               "output.t_end_yr", "output.n_snapshots"}));
+  // each with the new value and the checkpoint's (the run's notice and its record)
+  EXPECT_EQ(changed, (std::vector<std::string>{"meta.description = \"x\" (was \"\")",
+                                               "solver.rtol = 1e-08 (was 1e-06)",
+                                               "checkpoint.every_snapshots = 3 (was 0)",
+                                               "output.t_end_yr = 1e+06 (was 1e+05)",
+                                               "output.n_snapshots = 10 (was 41)"}));
 }
 
 TEST(CheckpointCompatibility, GridDiskAndProcessKeysAreRefusedByName) {
