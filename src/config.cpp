@@ -304,10 +304,18 @@ std::optional<ConfigValue> convert(const KeySpec& spec, const toml::node& node,
       char* end = nullptr;
       errno = 0;
       (void)std::strtod(t.c_str(), &end);
-      if (!t.empty() && end == t.c_str() + t.size() && errno == ERANGE)
+      const bool reads_as_number = !t.empty() && end == t.c_str() + t.size();
+      const bool double_range = errno == ERANGE;
+      errno = 0;
+      (void)std::strtoll(t.c_str(), &end, 10);
+      const bool int_range = errno == ERANGE && end == t.c_str() + t.size();
+      if (reads_as_number && double_range)
         what = "a number beyond the range of a double";
-      else if (!t.empty() && end == t.c_str() + t.size() && spec.type == KeyType::kInt)
+      else if (reads_as_number && spec.type == KeyType::kInt && int_range)
         what = "a number beyond the range of a 64-bit integer";
+      else if (reads_as_number &&
+               (spec.type == KeyType::kInt || spec.type == KeyType::kReal))
+        what = "a string (\"" + t + "\": write the number without quotes)";
     }
     problem = "must be " + type_text(spec.type) + unit_suffix(spec) + ", not " + what +
               "; " + (extra.empty() ? fix_text(spec) : extra);

@@ -124,21 +124,26 @@ std::vector<KeySpec> make_keys() {
       text("meta.reference", "the paper or test this scene reproduces"),
 
       // [star] spec §1.1
-      positive("star.mass_msun", "1.0", "M_sun", "stellar mass"),
-      positive("star.luminosity_lsun", "1.0", "L_sun",
-               "stellar luminosity (scales T, §1.3)"),
+      // Bounds on the physical keys: what a disk around a star can be (brown dwarfs to
+      // massive stars, cold to hot, up to a self-gravitating disk), so that a typo (an
+      // exponent off by decades) is refused by name instead of failing in the solver.
+      real("star.mass_msun", "1.0", "M_sun", "stellar mass", 0.01, false, 100.0, false),
+      real("star.luminosity_lsun", "1.0", "L_sun", "stellar luminosity (scales T, §1.3)",
+           1e-4, false, 1e7, false),
 
       // [disk] spec §1.2-§1.7
       choice("disk.model", "powerlaw", {"powerlaw", "lbp"},
              "gas surface density: powerlaw = MMSN-like (§1.2 A), lbp = Lynden-Bell & "
              "Pringle similarity profile (§1.2 B)"),
       when({disk_model("powerlaw")},
-           positive("disk.sigma_1au", "1700.0", "g cm^-2",
-                    "powerlaw: gas surface density at 1 au (MMSN 1700)")),
+           real("disk.sigma_1au", "1700.0", "g cm^-2",
+                "powerlaw: gas surface density at 1 au (MMSN 1700)", 0.0, true, 1e6,
+                false)),
       when({disk_model("powerlaw")}, real("disk.p", "1.5", "", "powerlaw: Sigma_g ∝ r^-p",
                                           -5.0, false, 5.0, false)),
-      when({disk_model("lbp")}, positive("disk.m_disk_msun", "0.05", "M_sun",
-                                         "lbp: total gas mass of the disk")),
+      when({disk_model("lbp")},
+           real("disk.m_disk_msun", "0.05", "M_sun", "lbp: total gas mass of the disk",
+                0.0, true, 10.0, false)),
       when({disk_model("lbp")},
            positive("disk.r_c_au", "60.0", "au", "lbp: characteristic radius r_c")),
       when({disk_model("lbp")},
@@ -148,7 +153,8 @@ std::vector<KeySpec> make_keys() {
                 "r^gamma; an evolving gas uses nu = alpha c_s H ∝ r^(3/2 - q) whatever "
                 "gamma is)",
                 -2.0, false, 2.0, true)),
-      positive("disk.T_1au", "280.0", "K", "temperature at 1 au for L_* = L_sun (§1.3)"),
+      real("disk.T_1au", "280.0", "K", "temperature at 1 au for L_* = L_sun (§1.3)", 1.0,
+           false, 1e4, false),
       real("disk.q", "0.5", "", "T ∝ r^-q (§1.3)", -2.0, false, 3.0, false),
       real("disk.T_floor", "10.0", "K", "temperature floor (§1.3)", 0.0, false),
       real("disk.mu", "2.34", "",
@@ -173,10 +179,10 @@ std::vector<KeySpec> make_keys() {
 
       // [dust] initial condition, spec §6.4
       when({dust_init("dust_to_gas")},
-           positive(
-               "dust.dust_to_gas", "0.01", "",
-               "initial Sigma_d / Sigma_g outside the snow line (§1.7 Z_out; inside it "
-               "(1 - snowline.f_ice) times this)")),
+           real("dust.dust_to_gas", "0.01", "",
+                "initial Sigma_d / Sigma_g outside the snow line (§1.7 Z_out; inside it "
+                "(1 - snowline.f_ice) times this)",
+                0.0, true, 1.0, false)),
       choice(
           "dust.init", "dust_to_gas", {"dust_to_gas", "gaussian_ring"},
           "initial Sigma_d: dust_to_gas = dust_to_gas * Sigma_g; gaussian_ring = a thin "

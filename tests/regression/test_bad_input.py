@@ -42,11 +42,22 @@ CASES = [
      ["disk.mu", "1e308", "<= 100"]),
     ("a modulus beyond diamond's", None, ["--set", "material.ice_youngs_gpa=1e308"],
      ["material.ice_youngs_gpa", "1e308", "<= 10000", "GPa"]),
+    # a star, a disk and a dust content no disk has (dust_to_gas = 1e30 and sigma_1au =
+    # 1e30 stopped in CVODE with exit 3, star.mass_msun = 1e-30 ran to exit 0)
+    ("more dust than gas", None, ["--set", "dust.dust_to_gas=2"],
+     ["dust.dust_to_gas", "2", "<= 1"]),
+    ("a star lighter than a brown dwarf", None, ["--set", "star.mass_msun=1e-30"],
+     ["star.mass_msun", "1e-30", ">= 0.01", "M_sun"]),
+    ("a disk heavier than any", None, ["--set", "disk.sigma_1au=1e30"],
+     ["disk.sigma_1au", "1e30", "<= 1e+06", "g cm^-2"]),
+    ("a disk near absolute zero", None, ["--set", "disk.T_1au=1e-9"],
+     ["disk.T_1au", "1e-9", ">= 1", "K"]),
     # keys inside their ranges that combine into a state that is not finite (CVODE said
     # only that its first right-hand side failed, exit 3)
-    ("non-finite initial dust", None, ["--set", "dust.dust_to_gas=1e308"],
-     ["initial Sigma_d", "inf", "dust.*",
-      "far from their defaults (over 1e3 x): dust.dust_to_gas = 1e+308 (default 0.01, --set)"]),
+    ("non-finite dust rates", None, ["--set", 'dust.init="gaussian_ring"', "--set",
+                                     "dust.ring_sigma=1e308"],
+     ["sigma_d", "nan", "dust.*",
+      "far from their defaults (over 1e3 x): dust.ring_sigma = 1e+308 (default 1.0, --set)"]),
     ("no gas in a cell", None, ["--set", 'disk.model="lbp"', "--set", "disk.r_c_au=1e-6"],
      ["Sigma_g", "= 0", "disk.*", "disk.r_c_au = 1e-06 (default 60.0, --set)"]),
     # a temperature rising outward puts ice inside silicate (the snow line was NaN, and the

@@ -41,7 +41,7 @@ def main():
     # spec §1.7: T = T_1au r^-q = T_sub at r = (T_1au / T_sub)^(1/q)
     cases = [
         ("on the grid", [], (280.0 / 170.0) ** 2, ""),
-        ("beyond the outer edge (300 au)", ["disk.T_1au=20000"], (20000.0 / 170.0) ** 2,
+        ("beyond the outer edge (300 au)", ["disk.T_1au=5000"], (5000.0 / 170.0) ** 2,
          "(beyond the outer edge: all silicate on the grid)"),
         ("inside the inner edge (5 au)", ["grid.r_in_au=5"], (280.0 / 170.0) ** 2,
          "(inside the inner edge: all ice on the grid)"),

@@ -459,7 +459,7 @@ TEST(Config, ResolvedTomlReadsBackToTheSameScene) {
       "reference = '''C:\\path'''\n"
       "[disk]\n"
       "p = 0.1\nq = 0.30000000000000004\nalpha = 1e-300\nsigma_mol = 5e-324\n"
-      "sigma_1au = 6.02214076e23\nT_1au = 3\n"
+      "sigma_1au = 6.02214076e5\nT_1au = 3\n"
       "[grid]\nn_cells = 1000000\n"
       "[pebbles]\nradii_au = [0, 1, 0.1, 1e-7, 123456789012345678, "
       "1.7976931348623157e308]\n",
@@ -668,10 +668,22 @@ TEST(Config, SetValueBeyondTheNumberRangeSaysSo) {
   // a --set value that is a number too large for a double or a 64-bit integer arrives as
   // a string; "not a string" sent the user looking for quotes
   expect_parts(error_of("", {"star.mass_msun=1e999"}),
-               {"star.mass_msun", "1e999", "beyond the range of a double", "> 0"});
+               {"star.mass_msun", "1e999", "beyond the range of a double", ">= 0.01"});
   expect_parts(error_of("", {"grid.n_cells=99999999999999999999"}),
                {"grid.n_cells", "beyond the range of a 64-bit integer", "<= 1000000"});
   expect_parts(error_of("", {"grid.n_cells=abc"}), {"grid.n_cells", "not a string"});
+}
+
+TEST(Config, QuotedNumberSaysToDropTheQuotes) {
+  // "32" is a string that holds a number in range: the quotes are the mistake (it used
+  // to be reported as a number beyond the range of a 64-bit integer)
+  const std::string file_msg = error_of("[grid]\nn_cells = \"32\"\n");
+  expect_parts(file_msg, {"grid.n_cells",
+                          "not a string (\"32\": write the number "
+                          "without quotes)"});
+  EXPECT_EQ(file_msg.find("beyond the range"), std::string::npos) << file_msg;
+  expect_parts(error_of("", {"disk.alpha=\"1e-3\""}),
+               {"disk.alpha", "write the number without quotes"});
 }
 
 // ---------------------------------------------------------------------------------------

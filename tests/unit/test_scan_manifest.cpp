@@ -200,7 +200,7 @@ TEST(ScanManifest, BadValuesAreRefusedBeforeAnyRunNamingRunAndKey) {
     const std::string s = e.what();
     EXPECT_NE(s.find("run_00001"), std::string::npos) << s;
     EXPECT_NE(s.find("star.mass_msun = -2.0"), std::string::npos) << s;
-    EXPECT_NE(s.find("must be > 0"), std::string::npos) << s;
+    EXPECT_NE(s.find("must be >= 0.01"), std::string::npos) << s;
   }
   const Manifest ok = expand("[[axis]]\nkey = \"star.mass_msun\"\nvalues = [0.5, 2.0]\n");
   const std::vector<ResolvedRun> r = validate_manifest(ok);
