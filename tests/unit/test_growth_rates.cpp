@@ -358,6 +358,32 @@ TEST(GrowthTurbulence, Vg2FactorScalesOnlyTheTurbulentTermAndIsReadFromTheScene)
 
 // ------------------------------------------------------- fragmentation, bouncing, §5.3
 
+TEST(GrowthFragmentation, ErosionHaltStopsGrowthButNotFragmentation) {
+  // E1 + fragmentation: where dv_ls >> v_eros (S = 0) growth stops, but collisions above
+  // v_frag still fragment: the factor is the fragmentation loss, not 0 (S frag, the
+  // spec's literal composition, froze the particle). Below v_frag: 0 (halted) up to the
+  // smooth positive part's band. Without erosion the factor is frag itself.
+  const LocalGas gas = mmsn_gas(5.0);
+  const double m = 1e10, phi = 1e-5, st = 1.0;  // dv_ls ~ 68 m/s: S = 0 at 40 m/s
+  GrowthOptions none = plain_options(), halt = plain_options(), frag = plain_options();
+  halt.erosion = ErosionModel::kHalt;
+  halt.fragmentation = true;
+  frag.fragmentation = true;
+  Species sp = ice_species();
+  const double coag = particle_rates(kSigmaD, m, phi, st, gas, sp, none).dm_dt;
+  for (double v_frag : {1e3, 2e3}) {  // 10 and 20 m/s, both below dv: loss
+    sp.v_frag = v_frag;
+    const auto r = particle_rates(kSigmaD, m, phi, st, gas, sp, halt);
+    const double f = particle_rates(kSigmaD, m, phi, st, gas, sp, frag).dm_dt / coag;
+    ASSERT_LT(f, -0.1) << v_frag;
+    ASSERT_GT(r.dv_ls, 1.5 * halt.v_eros);  // S = 0 to round-off
+    EXPECT_NEAR(r.dm_dt / coag, f, 1e-6) << v_frag;
+  }
+  sp.v_frag = 1e5;  // 1 km/s: no fragmentation, growth only, halted
+  const auto r = particle_rates(kSigmaD, m, phi, st, gas, sp, halt);
+  EXPECT_LT(std::abs(r.dm_dt / coag), 1e-6);
+}
+
 TEST(GrowthFragmentation, WithErosionBalanceFragmentsOnlyTheSimilarSizeTerm) {
   // E2 + fragmentation: dm/dt = (1 - f_s) F_frag R_coag + f_s (projectile term). With
   // net erosion (f_s = 0.95) and fragmentation (v_frag = 10 m/s < dv) both terms are

@@ -263,6 +263,15 @@ TEST(Jacobian, GrowthPorousErosionBalanceFragmentation) {
       "erosion balance + fragmentation");
 }
 
+TEST(Jacobian, GrowthPorousErosionHaltFragmentation) {
+  // halt stops growth but not the fragmentation loss: S (frag)_+ + (frag - (frag)_+)
+  expect_exact_growth(
+      {"porosity.enabled=true", "erosion.model=\"halt\"", "erosion.v_eros_m_s=20.0",
+       "fragmentation.enabled=true", "fragmentation.v_frag_ice_m_s=10.0",
+       "fragmentation.v_frag_sil_m_s=10.0"},
+      "erosion halt + fragmentation");
+}
+
 TEST(Jacobian, GrowthPorousBouncing) {
   expect_exact_growth({"porosity.enabled=true", "bouncing.enabled=true"},
                       "porous bouncing");
