@@ -951,6 +951,16 @@ bool is_switch(std::string_view key) {
 
 }  // namespace
 
+std::string empty_scene_warning(const Config& config) {
+  // a scene file that sets no key (empty, only comments, or the wrong file): the run
+  // would be every default, 1 Myr on 250 cells, without a word
+  for (const KeySpec& spec : scene_keys())
+    if (config.user_set(spec.key) && config.where(spec.key) != "--set") return "";
+  return "panoptic: warning: " + config.file().string() +
+         " sets no key: every key not given with --set takes its default "
+         "(params/reference.toml); check the file";
+}
+
 std::vector<std::string> unused_key_warnings(const Config& config) {
   std::vector<std::string> out;
   for (const KeySpec& spec : scene_keys()) {

@@ -112,6 +112,10 @@ Config apply_trusted_overrides(const Config& base,
 //! read (panoptic scan compares its scan.set keys the same way).
 std::string trim_blanks(std::string_view s);
 
+//! The warning for a scene file that sets no key (empty or only comments: every key
+//! would take its default), or "" when it sets one.
+std::string empty_scene_warning(const Config& config);
+
 //! One line per key the scene file or --set set that a run of this scene does not read
 //! (its KeySpec::used_when fails: disk.r_c_au without disk.model = "lbp"), naming the
 //! key, where it was set, the switches that leave it unused and the fix. A switch set to

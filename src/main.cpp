@@ -169,6 +169,8 @@ RunOutput new_output(const Config& cfg, const Simulation& sim, const fs::path& p
 //! One warning per key the scene set that this run does not read (disk.r_c_au without
 //! disk.model = "lbp"): to stderr, the exit code unchanged.
 void warn_unused_keys(const Config& cfg) {
+  if (const std::string w = empty_scene_warning(cfg); !w.empty())
+    std::fprintf(stderr, "%s\n", w.c_str());
   for (const std::string& w : unused_key_warnings(cfg))
     std::fprintf(stderr, "%s\n", w.c_str());
 }

@@ -202,8 +202,11 @@ ScanAxis read_axis(const toml::table& t, const toml::node& self, bool lhs,
                              ": num does not apply to sampling = \"lhs\" (the number of "
                              "runs is [scan] samples); remove it");
       const auto* i = num->as_integer();
-      if (!i || i->get() < 1 || i->get() > 1000000)
-        where.fail(*num, "axis " + a.key + ": num must be an integer >= 1, e.g. num = 5");
+      if (!i || i->get() < 2 || i->get() > 1000000)
+        where.fail(*num, "axis " + a.key +
+                             ": num must be an integer >= 2 (a range includes both "
+                             "ends) and <= 1000000, e.g. num = 5; for one value give "
+                             "values = [x]");
       a.num = static_cast<long>(i->get());
       // points that coincide (an integer key rounds them, or lo = hi) would run the
       // same scene more than once
@@ -474,6 +477,20 @@ Manifest expand_scan_text(std::string_view text, const std::string& name,
                    " (" + std::to_string(values[j].size()) +
                    " values) advance together and must have the same number of values");
     len.push_back(values[d[0]].size());
+    // a value (or, for zipped axes, a tuple of values) listed twice would run the same
+    // scene twice, as repeated range points would
+    for (std::size_t k = 0; k < len.back(); ++k)
+      for (std::size_t k2 = 0; k2 < k; ++k2) {
+        bool same = true;
+        for (std::size_t j : d) same = same && values[j][k] == values[j][k2];
+        if (!same) continue;
+        std::string shown;
+        for (std::size_t j : d)
+          shown += (shown.empty() ? "" : ", ") + m.axes[j].key + " = " + values[j][k];
+        where.fail("axis values " + shown + " appear twice (entries " +
+                   std::to_string(k2 + 1) + " and " + std::to_string(k + 1) +
+                   "): the same scene would run twice; remove one");
+      }
   }
   long total = 1;
   for (std::size_t l : len) {

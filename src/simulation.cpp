@@ -185,7 +185,14 @@ void validate_scene(const Config& cfg) {
              "< 0 makes the temperature rise outward, so ice would lie inside silicate; "
              "the snow line of spec §1.7 needs T falling outward: set disk.q >= 0 or "
              "snowline.enabled = false");
-  for (double r : cfg.reals("pebbles.radii_au"))
+  const auto& radii_au = cfg.reals("pebbles.radii_au");
+  for (std::size_t i = 0; i < radii_au.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (radii_au[i] == radii_au[j])
+        cfg.fail("pebbles.radii_au", "lists " + num(radii_au[i]) +
+                                         " [au] twice (one monitor each would record the "
+                                         "same flux); remove one");
+  for (double r : radii_au)
     if (!(r > cfg.real("grid.r_in_au") && r < cfg.real("grid.r_out_au")))
       cfg.fail("pebbles.radii_au",
                "every radius must lie strictly inside the grid, (r_in_au, r_out_au) = (" +
@@ -828,6 +835,13 @@ std::string Simulation::summary() const {
         << " (cell-centre values of the profile); raise grid.n_cells";
   }
   s << "\n";
+  // log-spaced snapshots between equal ends fall on one time (a quick run shortened
+  // with output.t_end_yr = t_first_yr): said, not refused
+  if (cfg_.reals("output.times_yr").empty() && cfg_.integer("output.n_snapshots") > 1 &&
+      cfg_.real("output.t_first_yr") == cfg_.real("output.t_end_yr"))
+    s << "WARNING: output.n_snapshots = " << cfg_.integer("output.n_snapshots")
+      << " with output.t_first_yr = t_end_yr = " << cfg_.real("output.t_end_yr")
+      << " yr: one snapshot after t = 0; lower t_first_yr for more\n";
   if (growth_) {  // spec §0: the contact mechanics behind the collision parameters
     s << physics::contact_summary("ice", material(cfg_, "ice")) << "\n";
     s << physics::contact_summary("silicate", material(cfg_, "sil")) << "\n";

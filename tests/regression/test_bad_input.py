@@ -44,6 +44,8 @@ CASES = [
      ["material.ice_youngs_gpa", "1e308", "<= 10000", "GPa"]),
     # a star, a disk and a dust content no disk has (dust_to_gas = 1e30 and sigma_1au =
     # 1e30 stopped in CVODE with exit 3, star.mass_msun = 1e-30 ran to exit 0)
+    ("a pebble radius twice", None, ["--set", "pebbles.radii_au=[3, 10, 3]"],
+     ["pebbles.radii_au", "lists 3 [au] twice", "remove one"]),
     ("more dust than gas", None, ["--set", "dust.dust_to_gas=2"],
      ["dust.dust_to_gas", "2", "<= 1"]),
     ("a star lighter than a brown dwarf", None, ["--set", "star.mass_msun=1e-30"],

@@ -79,6 +79,15 @@ def main():
              "no snow line: warmer than disk.T_sub everywhere (all silicate)")]:
         line = gas_line(check(args.exe, fiducial, *sets))
         c.check(text in line, f"snow line {label}: {line.strip()!r}")
+    # log-spaced snapshots between equal ends: one snapshot, said in the header
+    for sets, warned in ((["output.t_end_yr=100"], True),
+                         (["output.t_end_yr=100", "output.n_snapshots=1"], False),
+                         (["output.t_end_yr=200"], False)):
+        p = check(args.exe, fiducial, *sets)
+        said = "WARNING: output.n_snapshots" in p.stdout
+        c.check(p.returncode == 0 and said == warned,
+                f"{' '.join(sets)} (t_first_yr = 100): exit {p.returncode}, "
+                f"one-snapshot warning {'printed' if said else 'not printed'}")
     c.finish()
 
 

@@ -101,8 +101,27 @@ TEST(ScanManifest, GridRangeOfRepeatedPointsIsAnError) {
             std::string::npos);
   // distinct points pass
   EXPECT_EQ(error_of("[[axis]]\nkey = \"grid.n_cells\"\nlin = [10, 12]\nnum = 3\n"), "");
-  EXPECT_EQ(error_of("[[axis]]\nkey = \"disk.alpha\"\nlog = [1e-3, 1e-3]\nnum = 1\n"),
+  // one point of a range would drop its upper end ("both ends included"): refused, as a
+  // value listed twice would run one scene twice
+  EXPECT_NE(error_of("[[axis]]\nkey = \"disk.alpha\"\nlog = [1e-4, 1e-2]\nnum = 1\n")
+                .find("num must be an integer >= 2 (a range includes both ends)"),
+            std::string::npos);
+  const std::string twice =
+      error_of("[[axis]]\nkey = \"disk.alpha\"\nvalues = [1e-3, 2e-3, 0.001]\n");
+  EXPECT_NE(twice.find("disk.alpha = 0.001 appear twice (entries 1 and 3)"),
+            std::string::npos)
+      << twice;
+  // zipped, a value may repeat where the tuple does not
+  EXPECT_EQ(error_of("[[axis]]\nkey = \"disk.alpha\"\nvalues = [1e-3, 2e-3, 1e-3]\n"
+                     "zip = \"a\"\n[[axis]]\nkey = \"star.mass_msun\"\n"
+                     "values = [1.0, 1.0, 2.0]\nzip = \"a\"\n"),
             "");
+  EXPECT_NE(error_of("[[axis]]\nkey = \"disk.alpha\"\nvalues = [1e-3, 2e-3, 1e-3]\n"
+                     "zip = \"a\"\n[[axis]]\nkey = \"star.mass_msun\"\n"
+                     "values = [1.0, 1.0, 1.0]\nzip = \"a\"\n")
+                .find("appear twice (entries 1 and 3)"),
+            std::string::npos);
+  EXPECT_EQ(error_of("[[axis]]\nkey = \"disk.alpha\"\nvalues = [1e-3, 2e-3]\n"), "");
 }
 
 TEST(ScanManifest, ZipAdvancesTogether) {
