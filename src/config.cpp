@@ -922,6 +922,15 @@ Config load_scene(const std::filesystem::path& file,
   }
   ::close(fd);
   if (err) throw cannot_read(err);
+  if (text.size() > kMaxSceneBytes) {  // the read stops past the limit: give the size
+    const bool regular = S_ISREG(st.st_mode);
+    throw ConfigError(name + ": scene file too large (" +
+                      (regular
+                           ? std::to_string(st.st_size) + " bytes"
+                           : "more than " + std::to_string(kMaxSceneBytes) + " bytes") +
+                      ", the limit is " + std::to_string(kMaxSceneBytes >> 20) +
+                      " MiB); is this the right file?");
+  }
   Config config = load_scene_text(text, name, overrides);
   config.file_ = file;
   return config;

@@ -18,6 +18,7 @@
 #include "src/error.hpp"
 #include "src/h5.hpp"
 #include "src/observe_image.hpp"
+#include "src/simulation.hpp"
 #include "src/units.hpp"
 
 namespace fs = std::filesystem;
@@ -131,16 +132,6 @@ struct Materials {
   }
 };
 
-physics::OpticalTable table(const Config& cfg, const std::string& sp) {
-  const std::string key = "observe." + sp + "_lambda_mm";
-  try {
-    return physics::OpticalTable(sp, cfg.reals(key), cfg.reals("observe." + sp + "_n"),
-                                 cfg.reals("observe." + sp + "_k"));
-  } catch (const std::invalid_argument& e) {
-    cfg.fail(key, std::string(e.what()) + "; fix observe." + sp + "_lambda_mm, _n, _k");
-  }
-}
-
 void write_array(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims,
                  const std::vector<double>& data, const std::string& units,
                  const std::string& description) {
@@ -237,8 +228,8 @@ int observe(const ObserveArgs& a) {
   const double f_ice = cfg.real("snowline.f_ice");
   const double rho_ice = cfg.real("observe.water_ice_rho");
   const double rho_sil = cfg.real("material.sil_rho0");
-  Materials mat{table(cfg, "ice"),
-                table(cfg, "sil"),
+  Materials mat{optical_table_from_config(cfg, "ice"),
+                optical_table_from_config(cfg, "sil"),
                 cfg.str("observe.outer_species"),
                 cfg.str("observe.mix_rule"),
                 (1.0 - f_ice) / rho_sil / (f_ice / rho_ice + (1.0 - f_ice) / rho_sil),

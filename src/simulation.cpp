@@ -75,6 +75,25 @@ physics::Species species_from_config(const Config& cfg, const std::string& sp) {
   return s;
 }
 
+physics::OpticalTable optical_table_from_config(const Config& cfg,
+                                                const std::string& sp) {
+  const std::string key = "observe." + sp;
+  try {
+    return physics::OpticalTable(sp, cfg.reals(key + "_lambda_mm"), cfg.reals(key + "_n"),
+                                 cfg.reals(key + "_k"));
+  } catch (const std::invalid_argument& e) {
+    // the one a --set changed (observe reads the run's resolved scene, where all three
+    // are set), else the one the scene set, if only one
+    std::string blamed = key + "_lambda_mm";
+    for (const char* suffix : {"_n", "_k"})
+      if (cfg.user_set(key + suffix) && !cfg.user_set(blamed)) blamed = key + suffix;
+    for (const char* suffix : {"_lambda_mm", "_n", "_k"})
+      if (cfg.where(key + suffix) == "--set" && cfg.where(blamed) != "--set")
+        blamed = key + suffix;
+    cfg.fail(blamed, std::string(e.what()) + "; fix " + key + "_lambda_mm, _n, _k");
+  }
+}
+
 physics::GrowthOptions growth_options_from_config(const Config& cfg) {
   physics::GrowthOptions o;
   o.f_grow = cfg.real("growth.f_grow");
@@ -203,18 +222,7 @@ void validate_scene(const Config& cfg) {
   // The optical-constant tables are read only by `panoptic observe`, but a table that
   // observe will refuse (lengths differ, wavelengths not increasing) is checked here, so
   // that `panoptic check` and a run find it and not an observe after the run.
-  for (const std::string sp : {"ice", "sil"}) {
-    const std::string key = "observe." + sp;
-    try {
-      physics::OpticalTable(sp, cfg.reals(key + "_lambda_mm"), cfg.reals(key + "_n"),
-                            cfg.reals(key + "_k"));
-    } catch (const std::invalid_argument& e) {
-      std::string blamed = key + "_lambda_mm";  // the one the scene set, if only one
-      for (const char* suffix : {"_n", "_k"})
-        if (cfg.user_set(key + suffix) && !cfg.user_set(blamed)) blamed = key + suffix;
-      cfg.fail(blamed, std::string(e.what()) + "; fix " + key + "_lambda_mm, _n, _k");
-    }
-  }
+  for (const std::string sp : {"ice", "sil"}) (void)optical_table_from_config(cfg, sp);
   if (cfg.str("dust.init") == "gaussian_ring") {
     const double r0 = cfg.real("dust.ring_r_au");
     if (r0 <= r_in || r0 >= r_out)

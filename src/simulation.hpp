@@ -12,6 +12,7 @@
 
 #include "disk/gas_column.hpp"
 #include "physics/local_gas.hpp"
+#include "physics/optical_constants.hpp"
 #include "src/config.hpp"
 #include "src/cvode_integrator.hpp"
 #include "src/disk_model.hpp"
@@ -40,6 +41,10 @@ void validate_scene(const Config& cfg);
 
 //! The monomer species "ice" or "sil" of the scene (keys material.*, spec §0).
 physics::Species species_from_config(const Config& cfg, const std::string& sp);
+//! The optical constants observe.<sp>_lambda_mm, _n, _k of species "ice" or "sil" as a
+//! table; a table the scene makes invalid fails naming the key (the one a --set
+//! changed, if any).
+physics::OpticalTable optical_table_from_config(const Config& cfg, const std::string& sp);
 //! The growth-model switches and parameters of the scene (spec §3-§5).
 physics::GrowthOptions growth_options_from_config(const Config& cfg);
 

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -283,6 +284,33 @@ void check_text(std::string_view text, const std::string& name) {
   }
 }
 
+namespace {
+// What the parser's message means for two common mistakes, to append to it: a number
+// beyond the range of a double (toml++: "'1e400' could not be interpreted as a value"),
+// and a basic string left open at the end of its line (toml++ reports the newline as a
+// prohibited control character).
+std::string syntax_hint(const std::string& description) {
+  const std::string quoted = "' could not be interpreted as a value";
+  if (const auto end = description.find(quoted); end != std::string::npos && end > 0) {
+    const auto begin = description.rfind('\'', end - 1);
+    if (begin != std::string::npos) {
+      const std::string token = description.substr(begin + 1, end - begin - 1);
+      char* stop = nullptr;
+      errno = 0;
+      (void)std::strtod(token.c_str(), &stop);
+      if (!token.empty() && stop == token.c_str() + token.size() && errno == ERANGE)
+        return " (" + token +
+               " is beyond the range of a double, |x| < 1.8e308: give a number in range)";
+    }
+  }
+  if (description.find("Error while parsing string") != std::string::npos &&
+      description.find("control characters") != std::string::npos)
+    return " (a string not closed on its line? A \"...\" string ends with a quote on the "
+           "line it starts; use '''...''' for text over several lines)";
+  return "";
+}
+}  // namespace
+
 toml::table parse_toml_guarded(std::string_view text, const std::string& name,
                                const GuardOptions& options) {
   check_text(text, name);
@@ -295,7 +323,8 @@ toml::table parse_toml_guarded(std::string_view text, const std::string& name,
       break;
     case Verdict::kSyntaxError:
       throw ConfigError(name + ":" + std::to_string(r.line) + ":" +
-                        std::to_string(r.col) + ": TOML syntax error: " + r.text);
+                        std::to_string(r.col) + ": TOML syntax error: " + r.text +
+                        syntax_hint(r.text));
     case Verdict::kCrashed: {
       const size_t at = locate_crash(text, options);
       const std::string what = "not a valid TOML file (the TOML parser crashed on it: " +
@@ -325,7 +354,8 @@ toml::table parse_toml_guarded(std::string_view text, const std::string& name,
     // Only reached when the child could not run: the same message it would have sent.
     throw ConfigError(name + ":" + std::to_string(e.source().begin.line) + ":" +
                       std::to_string(e.source().begin.column) +
-                      ": TOML syntax error: " + std::string(e.description()));
+                      ": TOML syntax error: " + std::string(e.description()) +
+                      syntax_hint(std::string(e.description())));
   }
 }
 

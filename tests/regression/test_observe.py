@@ -246,6 +246,9 @@ def main():
         ("--set of a run key", ring, base + ["--set", "grid.n_cells=10"], "observe.*"),
         ("--set of a bad observe key", ring, base + ["--set", "observe.mix_rule=average"],
          "observe.mix_rule"),
+        # the run's scene sets all three lists: the one the --set changed is named
+        ("--set of a table of another length", ring,
+         base + ["--set", "observe.ice_n=[1,2]"], "--set: observe.ice_n = [1.0, 2.0]"),
     ]
     # the output is the run file: --overwrite must not replace what observe reads
     before = open(ring, "rb").read()

@@ -674,6 +674,19 @@ TEST(Config, SetValueBeyondTheNumberRangeSaysSo) {
   expect_parts(error_of("", {"grid.n_cells=abc"}), {"grid.n_cells", "not a string"});
 }
 
+TEST(Config, SyntaxErrorsOfTwoCommonMistakesSayWhatIsWrong) {
+  // toml++ says only that '1e400' "could not be interpreted as a value", and takes the
+  // newline ending an unclosed string for a prohibited control character
+  expect_parts(error_of("[star]\nmass_msun = 1e400\n"),
+               {"scene.toml:2:", "1e400 is beyond the range of a double"});
+  expect_parts(error_of("[meta]\ndescription = \"abc\n[star]\nmass_msun = 1.0\n"),
+               {"scene.toml:2:", "a string not closed on its line?"});
+  // other syntax errors keep the parser's message alone
+  const std::string other = error_of("[grid\n");
+  EXPECT_EQ(other.find("beyond the range"), std::string::npos) << other;
+  EXPECT_EQ(other.find("not closed on its line"), std::string::npos) << other;
+}
+
 TEST(Config, QuotedNumberSaysToDropTheQuotes) {
   // "32" is a string that holds a number in range: the quotes are the mistake (it used
   // to be reported as a number beyond the range of a 64-bit integer)
