@@ -3,7 +3,7 @@ tests/unit/test_contact_mechanics.cpp, test_particle.cpp, test_relative_velocity
 test_growth_rates.cpp (with the MMSN gas of tests/unit/mmsn_gas.hpp). Their comments say
 the numbers were "worked out independently" by "a separate python3 script written from the
 spec"; that script is not in the repository. This is such a script: everything below is
-computed here from the formulas of the physics spec (../shared/physics-spec.md, cited
+computed here from the formulas of the physics spec (physics/physics-spec.md, cited
 by section) and, where the spec leaves a smooth blend open, from the form the headers
 document (physics/drag.hpp: the p = 8 soft-max drag law; physics/relative_velocity.hpp:
 the OC07 blends; physics/contact_mechanics.hpp: w = 2 gamma). The C++ is neither called
