@@ -61,7 +61,10 @@ double log_of_constant(double x) {
 template <class T, class G>
 T compression_slope(const T& m, const T& dv, const T& a, const T& St,
                     const LocalGasT<G>& gas, const Species& sp, const GrowthOptions& o) {
-  // spec §4.2: E_imp = (1/2)(m/2) dv^2 against the threshold 3 b E_roll
+  // spec §4.2: E_imp = (1/2)(m/2) dv^2 against the threshold 3 b E_roll. The reduced
+  // mass m/2 is that of an equal-mass collision (Okuzumi et al. 2012), as the spec
+  // writes it, although dv is that of the eps = 0.5 pair, whose reduced mass m/9 would
+  // give 4.5x less energy (compression would start at ~5x the mass).
   const T e_imp = 0.25 * m * dv * dv;
   const T w_comp = log_step(e_imp, 3.0 * o.b * sp.e_roll, 0.1);
   // spec §4.3 compression slopes: Epstein St < 1: -1/8; Stokes St < 1: 0; St >= 1: -1/5
