@@ -39,12 +39,13 @@ T erosion_factor(const T& St, const T& m, const T& dv, const T& h_d, const T& fr
   dv_ls = dv_small_projectile(St, m, st_s, sp.m0, gas, o.turbulence);  // spec §3
   // spec §5.2: S(x) = 1/2 [1 - tanh((x - 1)/w)], x = dv_ls / v_eros
   const T s = tanh_step<T>((1.0 - dv_ls / o.v_eros) / o.w_eros);
-  if (o.erosion == ErosionModel::kHalt) {   // E1: growth halts where dv_ls = v_eros
-    if (!o.fragmentation) return s * frag;  // frag = 1
+  if (o.erosion == ErosionModel::kHalt) {  // E1: growth halts where dv_ls = v_eros
+    if (!o.fragmentation || !sp.fragments) return s * frag;  // frag = 1
     // Erosion halts growth, not the fragmentation of similar-size collisions (spec §5.2
     // with §5.3 composed literally, S frag, would also stop the loss above v_frag: the
     // particle would freeze instead of fragmenting): S acts on the smooth positive part
-    // of frag only (band 1e-3, as the filling factor's growth test).
+    // of frag only (band 1e-3, as the filling factor's growth test; a halted particle
+    // near frag = 0 loses up to 5e-4 of its coagulation rate through the band).
     const T gain = positive_part<T>(frag, 1e-3);
     return s * gain + (frag - gain);
   }

@@ -113,6 +113,7 @@ void write_file(const fs::path& path, const Checkpoint& chk) {
   flush(f.get(), path);
   h5::set_attr(f.get(), "complete", 1L);
   flush(f.get(), path);
+  h5::close_file(f, path.string());
 }
 
 Checkpoint read_fields(hid_t f) {
@@ -218,6 +219,7 @@ void write_checkpoint(const fs::path& path, const Checkpoint& chk) {
   try {
     write_file(tmp, chk);
     fsync_path(tmp, false);
+    read_checkpoint(tmp);  // whole and verified, or it does not replace the last one
     // The current checkpoint becomes the fallback only if it is whole: promoting a
     // damaged one would throw away the good fallback we have.
     bool keep = false;
@@ -304,13 +306,20 @@ Checkpoint read_checkpoint(const fs::path& path) {
 
 bool is_checkpoint_file(const fs::path& path) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec) || !has_hdf5_signature(path)) return false;
+  if (!fs::is_regular_file(path, ec)) return false;
+  if (fs::file_size(path, ec) == 0 && !ec) return true;  // nothing in it to lose
+  if (!has_hdf5_signature(path)) return false;
+  h5::quiet_errors();
   try {
     const h5::Handle f = h5::open_file(path.string(), false);
+    // any version of the format ("panoptic checkpoint N"), so that a later version
+    // still replaces the checkpoints of an earlier one
     return h5::has_attr(f.get(), "format") &&
-           h5::get_attr_string(f.get(), "format") == kFormat;
+           h5::get_attr_string(f.get(), "format").starts_with("panoptic checkpoint");
   } catch (const IoError&) {
-    return false;
+    // an HDF5 file at a checkpoint path that HDF5 cannot open: a damaged checkpoint
+    // (truncated, torn by a crash of the disk), which a restart refuses too
+    return true;
   }
 }
 

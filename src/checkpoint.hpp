@@ -66,9 +66,10 @@ std::filesystem::path previous_checkpoint_path(const std::filesystem::path& chec
 //! IoError naming the file; no temporary file is left behind.
 void write_checkpoint(const std::filesystem::path& path, const Checkpoint& chk);
 
-//! Whether `path` is a file that panoptic wrote as a checkpoint (an HDF5 file with the
-//! checkpoint format attribute); false for anything else, including a file it cannot
-//! read. A new run replaces only such files (main.cpp).
+//! Whether `path`, a checkpoint path, holds a file that panoptic wrote as a checkpoint
+//! and a new run may replace: an HDF5 file with the checkpoint format attribute (any
+//! version), a damaged one (the HDF5 signature, but HDF5 cannot open it) or an empty
+//! file; false for anything else (a text file, another run's output). main.cpp.
 bool is_checkpoint_file(const std::filesystem::path& path);
 
 //! Reads and verifies a checkpoint: throws IoError saying what is wrong (missing,

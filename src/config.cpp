@@ -308,13 +308,14 @@ std::optional<ConfigValue> convert(const KeySpec& spec, const toml::node& node,
       const bool double_range = errno == ERANGE;
       errno = 0;
       (void)std::strtoll(t.c_str(), &end, 10);
-      const bool int_range = errno == ERANGE && end == t.c_str() + t.size();
+      const bool int_text = !t.empty() && end == t.c_str() + t.size();
+      const bool int_range = errno == ERANGE && int_text;
       if (reads_as_number && double_range)
         what = "a number beyond the range of a double";
       else if (reads_as_number && spec.type == KeyType::kInt && int_range)
         what = "a number beyond the range of a 64-bit integer";
-      else if (reads_as_number &&
-               (spec.type == KeyType::kInt || spec.type == KeyType::kReal))
+      else if ((spec.type == KeyType::kInt && int_text) ||
+               (spec.type == KeyType::kReal && reads_as_number))
         what = "a string (\"" + t + "\": write the number without quotes)";
     }
     problem = "must be " + type_text(spec.type) + unit_suffix(spec) + ", not " + what +

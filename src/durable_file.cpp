@@ -44,7 +44,12 @@ bool has_hdf5_signature(const std::filesystem::path& path) {
 
 void refuse_to_overwrite_non_hdf5(const std::filesystem::path& output) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(output, ec)) return;
+  const auto st = std::filesystem::status(output, ec);
+  if (!std::filesystem::exists(st)) return;
+  if (!std::filesystem::is_regular_file(st))  // a device, a FIFO, a socket
+    throw IoError(output.string() +
+                  ": exists and is not a regular file; --overwrite replaces only an "
+                  "earlier output: choose an output file with -o");
   if (std::filesystem::file_size(output, ec) == 0 || ec) return;
   if (!has_hdf5_signature(output))
     throw IoError(

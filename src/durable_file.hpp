@@ -15,8 +15,9 @@ void rename_or_throw(const std::filesystem::path& from, const std::filesystem::p
 //! True when the file begins with the 8-byte HDF5 signature (a file panoptic wrote has
 //! no user block, so the signature is at offset 0; a truncated file keeps it).
 bool has_hdf5_signature(const std::filesystem::path& path);
-//! Throws IoError when `output` exists, is not empty and is not an HDF5 file: --overwrite
-//! replaces an earlier output, never a scene, a note or a script given by mistake.
+//! Throws IoError when `output` exists and is not a regular file (a device, a FIFO) or
+//! is a non-empty file that is not HDF5: --overwrite replaces an earlier output, never
+//! a scene, a note, a script or /dev/null given by mistake.
 void refuse_to_overwrite_non_hdf5(const std::filesystem::path& output);
 //! Throws ConfigError when `output` is the file `input` (by identity: links and other
 //! spellings of the path too): --overwrite would replace what the command reads.

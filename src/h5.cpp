@@ -150,6 +150,12 @@ Handle create_file_in_memory(const std::string& path) {
   return create(path, false, true);
 }
 
+void close_file(Handle& f, const std::string& path) {
+  if (!f.valid()) return;
+  if (H5Fclose(f.release()) < 0)
+    throw IoError("HDF5: closing file " + path + " failed (its data may be incomplete)");
+}
+
 Handle open_file(const std::string& path, bool writable) {
   return {ok(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT),
              "opening file " + path),

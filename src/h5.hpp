@@ -26,6 +26,12 @@ class Handle {
   hid_t get() const { return id_; }
   bool valid() const { return id_ >= 0; }
   void reset();
+  //! Gives up ownership: the caller closes the id.
+  hid_t release() {
+    const hid_t id = id_;
+    id_ = -1;
+    return id;
+  }
 
  private:
   hid_t id_ = -1;
@@ -43,6 +49,10 @@ Handle create_file(const std::string& path, bool checksummed_metadata = false);
 //! fit in memory (a scan's summary).
 Handle create_file_in_memory(const std::string& path);
 Handle open_file(const std::string& path, bool writable);
+//! Closes file `f` and throws IoError naming `path` when HDF5 fails to (its metadata,
+//! cached until the close, could not be written: the file is incomplete). ~Handle
+//! ignores that failure; a file that must be whole (a checkpoint) is closed with this.
+void close_file(Handle& f, const std::string& path);
 Handle create_group(hid_t parent, const std::string& name);
 Handle open_group(hid_t parent, const std::string& name);
 bool exists(hid_t parent, const std::string& path);

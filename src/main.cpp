@@ -150,10 +150,12 @@ RunOutput new_output(const Config& cfg, const Simulation& sim, const fs::path& p
                     path.string() +
                     " keeps its checkpoints there; move that file or choose another -o");
     if (!overwrite)
-      throw IoError(p.string() + ": a checkpoint of an earlier run to " + path.string() +
-                    "; continue that run with --restart " + chk.string() +
-                    ", or pass --overwrite to start a new one (the checkpoint is "
-                    "removed)");
+      throw IoError(
+          p.string() + ": a checkpoint of an earlier run to " + path.string() +
+          (fs::exists(path, ec)
+               ? "; continue that run with --restart " + chk.string() + ", or pass "
+               : ", whose output is gone, so it cannot be continued; pass ") +
+          "--overwrite to start a new one (the checkpoint is removed)");
   }
   RunOutput out(path, overwrite,
                 {cfg.file().stem().string(), cfg.resolved_toml(), PANOPTIC_GIT_SHA,
@@ -248,8 +250,8 @@ int run(const RunArgs& a) {
       // continue it with the scene file's values.
       for (const std::string& c : changed)
         std::fprintf(stderr,
-                     "panoptic: note: this restart changes %s; to continue the run "
-                     "as it was, repeat its --set options (the restart command it "
+                     "panoptic: note: this restart changes %s (if not meant, restart "
+                     "with the stopped run's --set options: the restart command it "
                      "printed)\n",
                      c.c_str());
     } catch (const ConfigError& e) {
@@ -529,13 +531,15 @@ int run_command_line(int argc, char** argv);
 
 //! A write that failed (disk full, quota) can leave HDF5 holding a file it cannot close,
 //! and its clean-up at exit (H5_term_library) then crashes on it (SIGSEGV instead of
-//! the error's exit code; HDF5 1.10.8, sec2 driver). Every Handle is closed by the
-//! time the command returns, so a file still open here is such a file: after an error
-//! the process ends without HDF5's clean-up, with the error's exit code; the files that
-//! did close are complete on disk.
+//! the command's exit code; HDF5 1.10.8, sec2 driver). Every Handle is closed by the
+//! time the command returns, so a file still open here is such a file: the process
+//! ends without HDF5's clean-up, with the command's exit code; the files that did
+//! close are complete on disk.
 int main(int argc, char** argv) {
   const int code = run_command_line(argc, argv);
-  if (code != 0 && H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE) > 0) {
+  // also after a success: a periodic checkpoint that failed to write (the run goes on
+  // without it, warned) can leave its file behind in HDF5
+  if (H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE) > 0) {
     std::fflush(nullptr);
     std::_Exit(code);
   }

@@ -91,22 +91,24 @@ std::string rebuild(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::string write_failure_hint(const std::filesystem::path& path) {
+std::string write_failure_hint(const std::filesystem::path& path, int err) {
   const std::filesystem::path dir =
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   if (::access(dir.c_str(), W_OK) != 0)
     return " (" + dir.string() + ": " + std::strerror(errno) +
            "); write the output elsewhere with -o";
-  if (std::filesystem::exists(path) && ::access(path.c_str(), W_OK) != 0)
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
     return " (" + std::string(std::strerror(errno)) +
            "); write the output elsewhere with -o";
-  std::error_code ec;
+  if (err == EDQUOT)
+    return " (" + std::string(std::strerror(err)) +
+           ": the disk quota is full); make room or write elsewhere with -o";
   const auto space = std::filesystem::space(dir, ec);
-  if (!ec && space.available < (std::uintmax_t{1} << 20))
+  if (err == ENOSPC || (!ec && space.available < (std::uintmax_t{1} << 20)))
     return " (the file system of " + dir.string() + " has " +
-           std::to_string(space.available) +
-           " bytes free: the disk or quota is full); make room or write elsewhere with "
-           "-o";
+           (ec ? std::string("no space") : std::to_string(space.available) + " bytes") +
+           " free: the disk is full); make room or write elsewhere with -o";
   return "";
 }
 
@@ -143,11 +145,16 @@ RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
     h5::create_stack(g.get(), "time", 0, "yr", "simulated time of each snapshot");
     flush();
   } catch (const IoError& e) {
-    // a stub without a snapshot is of no use, and a half-written one would not read:
-    // removed (the existing file it replaces is gone already, truncated by the create)
-    const std::string hint = write_failure_hint(path);
+    const int err = errno;  // of the failed write, if it was one
+    const std::string hint = write_failure_hint(path, err);
+    // a stub that this constructor created holds no snapshot and may not read: removed
+    // (the file it replaced is gone already, truncated by the create). If the create
+    // itself failed, the file at `path` is not ours to remove.
+    const bool created = file_.valid();
     file_.reset();
-    std::filesystem::remove(path, ec);
+    if (created &&
+        std::filesystem::is_regular_file(std::filesystem::symlink_status(path, ec)))
+      std::filesystem::remove(path, ec);
     if (std::string_view(e.what()).starts_with(path.string())) throw;
     throw IoError(path.string() + ": " + e.what() + hint);
   }
@@ -369,7 +376,7 @@ void RunOutput::write_solver(const SolverStats& s, double wall_s,
 void RunOutput::flush() {
   if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0)
     throw IoError(path_.string() + ": flushing the HDF5 file failed" +
-                  write_failure_hint(path_));
+                  write_failure_hint(path_, errno));
 }
 
 }  // namespace panoptic

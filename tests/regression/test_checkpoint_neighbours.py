@@ -5,9 +5,10 @@ removes those of the run it replaces. It must remove nothing else:
     the output of another run named x.chk.h5) stops the run with exit 4 and a message
     naming it, with or without --overwrite, and is left byte for byte as it was, and no
     output is created;
-  * a real checkpoint without --overwrite (its output deleted or moved) stops the run
-    with exit 4 and the advice to --restart from it or pass --overwrite, and is kept;
-    with --overwrite it is removed and the run completes.
+  * a real checkpoint without --overwrite stops the run with exit 4 and is kept (with
+    the advice to --restart from it, or, when its output is gone, that only
+    --overwrite can help); with --overwrite it is removed and the run completes, also
+    when it is damaged (truncated, or empty) as a scan's rerun needs.
 And a restart that changes a key a restart may change (here output.t_end_yr, as a
 restart without the stopped run's --set options does) says so on stderr, with both
 values, and records them in the output's `restarts` attribute."""
@@ -60,19 +61,41 @@ def main():
     panoptic(args.exe, SCENE, "-o", run, sets=SHORT)
     chk = checkpoint_of(run)
     c.check(os.path.exists(chk), "a finished run leaves its checkpoint")
-    os.remove(run)
-    before = read(chk)
+    # a new run to an output whose run left a checkpoint: refused without --overwrite
+    # (the output is there: continue it with --restart), the checkpoint kept
+    before, out_before = read(chk), read(run)
     p = panoptic(args.exe, SCENE, "-o", run, sets=SHORT, expect=None)
-    c.check(p.returncode == 4 and "--restart" in p.stderr and "--overwrite" in p.stderr,
-            f"checkpoint without its output, no --overwrite: exit {p.returncode} (4): "
+    c.check(p.returncode == 4 and "--overwrite" in p.stderr,
+            f"existing output and checkpoint, no --overwrite: exit {p.returncode} (4): "
             f"{p.stderr.strip()[:160]}")
-    c.check(read(chk) == before and not os.path.exists(run),
-            "the checkpoint kept, no output created")
+    c.check(read(chk) == before and read(run) == out_before,
+            "the checkpoint and the output kept")
     p = panoptic(args.exe, SCENE, "-o", run, "--overwrite", sets=SHORT, expect=None)
     c.check(p.returncode == 0 and "removed" in p.stdout,
             f"with --overwrite: exit {p.returncode} (0), the old checkpoint removed")
-    c.check(not os.path.exists(previous_of(run)) or read(chk) != before,
-            "the new run's checkpoint replaced the old one")
+    with h5py.File(run, "r") as f:
+        new_id = text(f.attrs["run_id"])
+    with h5py.File(chk, "r") as f:
+        chk_id = text(f.attrs["run_id"])
+    c.check(not os.path.exists(previous_of(run)) and chk_id == new_id,
+            f"the checkpoint is the new run's (run_id {chk_id} = {new_id}), no .prev")
+
+    # a damaged checkpoint (truncated: HDF5 cannot open it) is still the earlier run's
+    # and --overwrite replaces it (a scan reruns a run this way); an empty one too
+    for label, damage in (("truncated", lambda p: os.truncate(p, 2000)),
+                          ("empty", lambda p: os.truncate(p, 0))):
+        damage(chk)
+        p = panoptic(args.exe, SCENE, "-o", run, "--overwrite", sets=SHORT, expect=None)
+        c.check(p.returncode == 0 and "HDF5-DIAG" not in p.stderr,
+                f"{label} checkpoint with --overwrite: exit {p.returncode} (0), replaced "
+                f"{p.stderr.strip()[:120]}")
+    # the advice when the checkpoint's output is gone: only --overwrite can help
+    os.remove(run)
+    p = panoptic(args.exe, SCENE, "-o", run, sets=SHORT, expect=None)
+    c.check(p.returncode == 4 and "output is gone" in p.stderr
+            and "--restart" not in p.stderr,
+            f"checkpoint whose output is gone: {p.stderr.strip()[:160]}")
+    panoptic(args.exe, SCENE, "-o", run, "--overwrite", sets=SHORT)
 
     # a restart that changes output.t_end_yr
     p = panoptic(args.exe, SCENE, "--restart", chk, "-o", run,

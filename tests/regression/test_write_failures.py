@@ -7,9 +7,8 @@ file, the cause and the fix, never a crash.
     setpriv exists): the errno text, "Permission denied".
   * A full file system (a tmpfs of 100 kB, when this test may mount one): the run stops
     at the write that fails, exit 4 (not SIGSEGV, exit -11 or 139: HDF5 1.10.8 crashed at
-    exit on the file it could not close), "the disk or quota is full".
-Cases the machine cannot set up are reported as skipped; with none run, the test exits
-77 (skipped)."""
+    exit on the file it could not close), "the disk is full".
+Cases the machine cannot set up (the last two) are printed as skipped."""
 import os
 import shutil
 import subprocess
@@ -33,7 +32,6 @@ def main():
     c = Checks()
     w = args.workdir
     exe = os.path.abspath(args.exe)
-    ran = 0
 
     d = os.path.join(w, "a_directory")
     os.makedirs(d, exist_ok=True)
@@ -41,7 +39,6 @@ def main():
         p = panoptic(exe, d, *extra)
         c.check(p.returncode == 4 and "is a directory" in p.stderr,
                 f"-o DIR {' '.join(extra)}: exit {p.returncode} (4): {p.stderr.strip()}")
-    ran += 1
 
     # --overwrite replaces an earlier output, not a file of another kind
     notes = os.path.join(w, "notes.toml")
@@ -77,7 +74,6 @@ def main():
                 c.check(p.returncode == 4 and "Permission denied" in p.stderr
                         and "-o" in p.stderr, f"unwritable directory: exit "
                         f"{p.returncode} (4): {p.stderr.strip()}")
-                ran += 1
         finally:
             shutil.rmtree(ro, ignore_errors=True)
     else:
@@ -91,17 +87,14 @@ def main():
             p = panoptic(exe, "full.h5", cwd=full)
             c.check(p.returncode == 4, f"full file system: exit {p.returncode} (4; "
                     "-11 or 139 is the crash at exit)")
-            c.check("disk or quota is full" in p.stderr and "full.h5" in p.stderr,
+            c.check("the disk is full" in p.stderr and "full.h5" in p.stderr,
                     f"full file system: the message: {p.stderr.strip()}")
-            ran += 1
         else:
             print("skipped: full file system (cannot mount a tmpfs here)")
     finally:
         if mounted:
             subprocess.run(["umount", full])
         shutil.rmtree(full, ignore_errors=True)
-    if c.failed == 0 and ran == 0:
-        raise SystemExit(77)
     c.finish()
 
 
