@@ -15,22 +15,40 @@ Layout (written by the C++ code):
                      (";"-separated, same order)
     /summary/*       end-of-run numbers: 1-element datasets (m_pl_coag [M_earth],
                      r_min_pl_si [au], budget_error, ...) and t_first_pl (N,) [yr]
-    /solver          attrs nst, nfe, nje, netf, nni, nncf, wall_s, status
+    /solver          attrs nst, nfe, nje, nsetups, netf, nni, nncf, nreinit, wall_s,
+                     status
 Every dataset carries `units` and `description` attributes. /timeseries, /pebbles and
 /summary are absent from older and transport-only files; /summary is written when the
 run completes, /solver also when it stops or fails (its status says which).
 
+Arrays come back in the units of the file (each dataset's `units` attribute; run.unit()
+gives it): /snapshots in cgs with times in yr and radii in au, /timeseries and /summary
+in M_earth, Myr and au. The same short name can live in two groups in different units
+(snapshots/m_pl_coag [g], summary/m_pl_coag [M_earth]): field() then takes /snapshots
+and warns; give the path to choose.
+
 Usage:
     run = load_run("out/run.h5")
-    run.field("sigma_d")        # (nt, N) [g cm^-2]
-    run.dust_mass()             # (nt,) [g]
-    profile, t = run.at_time("sigma_d", 1e5)
+    run.field("sigma_d")                    # (nt, N) [g cm^-2]
+    run.unit("sigma_d")                     # "g cm^-2"
+    profile, t = run.at_time("sigma_d", 1e5)   # nearest snapshot, [g cm^-2] and [yr]
+    t, m_pl = run.planetesimal_mass()       # (ns,) [yr], [M_earth] (all channels)
+    t, flux = run.pebble_flux("snow line")  # (ns,) [yr], [M_earth Myr^-1]
+    t, m = run.budget("m_out_inner")        # (ns,) [yr], [M_earth]
+    run.dust_mass()                         # (nt,) [g]
 """
 import tomllib
 import warnings
 
 import h5py
 import numpy as np
+
+# The unit constants of the C++ code (src/units.hpp), for conversions of the file's units
+M_EARTH = 5.972e27      # [g]
+M_SUN = 1.989e33        # [g]
+AU = 1.496e13           # [cm]
+YR = 3.156e7            # [s]
+MYR = 1e6 * YR          # [s]
 
 
 class Run:
@@ -134,19 +152,101 @@ class Run:
             if group in groups and key in groups[group]:
                 return groups[group][key]
         else:
-            for fields in groups.values():
-                if key in fields:
-                    return fields[key]
-        raise KeyError(f"{name!r} not in {self.path}; datasets: {sorted(self.units)}")
+            found = [g for g, fields in groups.items() if key in fields]
+            if found:
+                units = {self.units.get(f"{g}/{key}", "") for g in found}
+                if len(units) > 1:
+                    warnings.warn(f"{name!r} is in {', '.join('/' + g for g in found)} in "
+                                  f"different units; returning /{found[0]}/{key} "
+                                  f"[{self.units.get(f'{found[0]}/{key}', '')}]: give "
+                                  f"the path to choose", stacklevel=2)
+                return groups[found[0]][key]
+        raise KeyError(f"{name!r} not in {self.path}{_process_hint(key)}; datasets: "
+                       f"{sorted(self.units)}")
+
+    def unit(self, name):
+        """The `units` attribute of the dataset field(name) returns ("" for a
+        dimensionless one)."""
+        group, _, key = name.strip("/").rpartition("/")
+        if group:
+            return self.units[f"{group}/{key}"]
+        for g in ("snapshots", "disk", "grid", "timeseries", "summary", "pebbles"):
+            if f"{g}/{key}" in self.units:
+                return self.units[f"{g}/{key}"]
+        raise KeyError(f"{name!r} not in {self.path}{_process_hint(key)}")
+
+    def planetesimal_mass(self):
+        """(time [yr], planetesimal mass [M_earth]) of all channels together, on the
+        /timeseries samples (or, in a file without them, the snapshots); zeros where the
+        scene has no planetesimal channel."""
+        names = self._budget_names()
+        if names:
+            cols = [names.index(c) for c in ("m_pl_coag", "m_pl_si") if c in names]
+            mb = self.timeseries["mass_budget"]
+            return self.timeseries["time"], mb[:, cols].sum(axis=1)
+        m = sum(self.snapshots.get(c, np.zeros_like(self.time)) for c in ("m_pl_coag", "m_pl_si"))
+        return self.time, np.asarray(m, dtype=float) / M_EARTH
+
+    def pebble_flux(self, monitor):
+        """(time [yr], inward pebble flux [M_earth Myr^-1]) through one monitor, given by
+        its name ("snow line", "r_in", "3 au": run.pebble_names) or radius [au] (the
+        nearest monitor), on the /timeseries samples."""
+        i = self._monitor(monitor)
+        if "pebble_flux" not in self.timeseries:
+            raise KeyError(f"{self.path} has no /timeseries/pebble_flux (an older file?): "
+                           f"use snapshots['pebble_flux'] [g s^-1]")
+        return self.timeseries["time"], self.timeseries["pebble_flux"][:, i]
+
+    def budget(self, term):
+        """(time [yr], mass [M_earth]) of one mass-budget column on the /timeseries
+        samples: "m_dust" (on the grid), "m_pl_coag", "m_pl_si", "m_out_inner" (through
+        r_in), "m_sublimated", or "error" (|sum - initial|); run.budget_columns lists
+        them."""
+        names = self._budget_names()
+        if term not in names:
+            raise KeyError(f"{term!r} is not a budget column of {self.path}; columns: "
+                           f"{names}")
+        return self.timeseries["time"], self.timeseries["mass_budget"][:, names.index(term)]
+
+    def _budget_names(self):
+        """The /timeseries/mass_budget column names ([] without the dataset): the
+        attribute's, or the six of a file written before it."""
+        if "mass_budget" not in self.timeseries:
+            return []
+        if self.budget_columns:
+            return self.budget_columns
+        default = ["m_dust", "m_pl_coag", "m_pl_si", "m_out_inner", "m_sublimated", "error"]
+        return default if self.timeseries["mass_budget"].shape[1] == 6 else []
+
+    def _monitor(self, monitor):
+        """Index of a pebble-flux monitor by name or radius [au]."""
+        if isinstance(monitor, str):
+            if monitor not in self.pebble_names:
+                raise KeyError(f"no pebble-flux monitor {monitor!r} in {self.path}; "
+                               f"monitors: {self.pebble_names}")
+            return self.pebble_names.index(monitor)
+        r = np.asarray(self.monitor_r_au)
+        if r.size == 0:
+            raise KeyError(f"{self.path} has no pebble-flux monitors")
+        return int(np.argmin(np.abs(np.log(r / float(monitor)))))
 
     def dust_mass(self):
         """Total dust mass on the grid per snapshot, sum(sigma_d * area) [g], (nt,)."""
         return self.snapshots["sigma_d"] @ self.area
 
     def at_time(self, name, t_yr):
-        """(profile, time [yr]) of snapshot field `name` at the snapshot nearest t_yr."""
+        """(profile, time [yr]) of snapshot field `name` at the snapshot nearest t_yr
+        (warned when t_yr lies outside the snapshots' span, or the nearest snapshot is
+        more than 10 % away from it: compare the time returned)."""
+        if name not in self.snapshots:
+            self.field(f"snapshots/{name}")  # raises with the reason
         i = int(np.argmin(np.abs(self.time - t_yr)))
-        return self.snapshots[name][i], float(self.time[i])
+        t = float(self.time[i])
+        if t_yr < self.time[0] or t_yr > self.time[-1] or abs(t - t_yr) > 0.1 * abs(t_yr):
+            warnings.warn(f"{self.path}: no snapshot near t = {t_yr:g} yr; the nearest is at "
+                          f"{t:g} yr (snapshots span {self.time[0]:g}-{self.time[-1]:g} yr)",
+                          stacklevel=2)
+        return self.snapshots[name][i], t
 
 
 def load_run(path):
@@ -158,6 +258,7 @@ def load_run(path):
     that have a time). Missing /timeseries, /pebbles or /summary give empty dicts.
     """
     with _open_read_only(path) as f:
+        _refuse_other_files(f, path)
         units, descriptions = {}, {}
         f.visititems(lambda name, obj: _collect_units(units, descriptions, name, obj))
         grid = _read_group(f, "grid")
@@ -180,6 +281,37 @@ def load_run(path):
                summary=summary, descriptions=descriptions)
 
 
+def _refuse_other_files(f, path):
+    """ValueError naming what `path` is when it is a panoptic file but not a run's output:
+    a checkpoint, a scan summary, an observe output."""
+    if "format" in f.attrs and _to_str(f.attrs["format"]).startswith("panoptic checkpoint"):
+        out = _to_str(f.attrs.get("output_file", ""))
+        raise ValueError(f"{path} is a checkpoint, not a run's output; load the run's "
+                         f"output {out or '(the .h5 next to it)'}")
+    if "snapshots" not in f:
+        if "runs" in f and "outcome" in f:
+            raise ValueError(f"{path} is a scan summary; read it with "
+                             f"postprocess.plot_scan.load_summary")
+        if "image" in f or "spectral_index" in f or "flux" in f:
+            raise ValueError(f"{path} is an observe output; plot it with "
+                             f"postprocess.plot_observe")
+        raise ValueError(f"{path} is not a panoptic run file (no /snapshots)")
+
+
+_PROCESS_OF = {
+    "m": "growth", "phi": "porosity", "a": "growth", "rho_int": "growth", "dv": "growth",
+    "t_grow": "growth", "dv_ls": "erosion", "sigma_pl": "a planetesimal channel",
+    "sigma_pl_coag": "planetesimals.coagulation", "sigma_pl_si": "planetesimals.si",
+    "t_first_pl": "a planetesimal channel", "m_pl_coag": "a planetesimal channel",
+    "m_pl_si": "a planetesimal channel", "m_out_gas": "gas.evolve",
+    "m_peb_snowline": "a snow line on the grid"}
+
+
+def _process_hint(key):
+    """" (written only with <process> on)" for a dataset a process owns, else ""."""
+    return f" (written only with {_PROCESS_OF[key]} on)" if key in _PROCESS_OF else ""
+
+
 def _name_list(f, group, attr):
     """The ";"-separated names of attribute `attr` of `group` ([] when absent)."""
     if group not in f or attr not in f[group].attrs:
@@ -190,6 +322,10 @@ def _name_list(f, group, attr):
 
 def _open_read_only(path):
     """h5py.File(path, 'r'), with a hint when a killed writer left the file flagged."""
+    import os
+    if os.path.isdir(path):
+        raise IsADirectoryError(f"{path} is a directory; give a run's .h5 file (a scan's "
+                                f"runs are in {os.path.join(str(path), 'runs')})")
     try:
         return h5py.File(path, "r")
     except OSError as err:

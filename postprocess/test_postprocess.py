@@ -269,10 +269,54 @@ def check_reader_new_groups(tmp):
     assert run.descriptions["timeseries/mass_budget"] == "synthetic mass_budget"
     assert run.field("timeseries/m_through") is run.timeseries["m_through"]
     assert run.field("budget_error") == run.summary["budget_error"]
-    assert run.field("pebble_flux") is run.snapshots["pebble_flux"]   # snapshots first
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert run.field("pebble_flux") is run.snapshots["pebble_flux"]   # snapshots first
+    # ... in other units than /timeseries/pebble_flux: said
+    assert any("different units" in str(w.message) for w in caught), caught
+    assert run.unit("sigma_d") == "g cm^-2" and run.unit("timeseries/pebble_flux") == \
+        "M_earth Myr^-1"
+    # the notebook helpers read the /timeseries columns by name
+    t, m_pl = run.planetesimal_mass()
+    mb = run.timeseries["mass_budget"]
+    cols = run.budget_columns or ["m_dust", "m_pl_coag", "m_pl_si", "m_out_inner",
+                                  "m_sublimated", "error"]
+    assert np.array_equal(t, run.timeseries["time"])
+    assert np.array_equal(m_pl, mb[:, cols.index("m_pl_coag")] + mb[:, cols.index("m_pl_si")])
+    t, out = run.budget("m_out_inner")
+    assert np.array_equal(out, mb[:, cols.index("m_out_inner")])
+    for key in (MONITORS[1], float(diag["r_mon"][1])):   # by name and by radius
+        t, flux = run.pebble_flux(key)
+        assert np.array_equal(flux, run.timeseries["pebble_flux"][:, 1]), key
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run.at_time("sigma_d", 1e12)
+    assert any("no snapshot near" in str(w.message) for w in caught), caught
     assert run.finished and run.n_snapshots == len(ref["time"])
     return (f"reader: /timeseries ({len(run.timeseries['time'])} rows), /pebbles "
             f"({len(run.pebble_names)} named monitors), /summary ({len(run.summary)} entries)")
+
+
+def check_reader_refuses_other_files(tmp):
+    """A checkpoint, a directory or an HDF5 file without /snapshots is named as such."""
+    chk = os.path.join(tmp, "x.chk.h5")
+    with h5py.File(chk, "w") as f:
+        f.attrs["format"] = "panoptic checkpoint 1"
+        f.attrs["output_file"] = "/data/x.h5"
+    other = os.path.join(tmp, "other.h5")
+    with h5py.File(other, "w") as f:
+        f.create_dataset("x", data=[1.0])
+    for path, text in ((chk, "is a checkpoint, not a run's output; load the run's output "
+                             "/data/x.h5"),
+                       (other, "is not a panoptic run file"),
+                       (tmp, "is a directory")):
+        try:
+            reader.load_run(path)
+        except (ValueError, IsADirectoryError) as err:
+            assert text in str(err), str(err)
+        else:
+            raise AssertionError(f"{path} loaded")
+    return "reader: a checkpoint, a directory and a foreign HDF5 file are named as such"
 
 
 def check_reader_groups_absent(tmp):
@@ -808,7 +852,8 @@ def _is_png(path):
 
 
 CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
-          check_reader_groups_absent, check_reader_stopped_or_failed_not_finished,
+          check_reader_groups_absent, check_reader_refuses_other_files,
+          check_reader_stopped_or_failed_not_finished,
           check_reader_timeseries_killed,
           check_reader_timeseries_zero_rows, check_reader_monitor_names,
           check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
