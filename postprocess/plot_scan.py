@@ -24,8 +24,9 @@ import os
 import sys
 
 import h5py
+import matplotlib.ticker
 import numpy as np
-from matplotlib import colors
+from matplotlib import colors, patheffects
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
@@ -37,14 +38,69 @@ UNITS = {"m_pl_coag": "M_earth", "m_pl_si": "M_earth", "m_peb_snowline": "M_eart
          "r_max_pl_si": "au"}
 
 
+# Typeset names of the scene keys scans most often vary and of the outcomes (mathtext);
+# any other key is labelled by its name with the unit its suffix gives.
+KEY_LABELS = {
+    "star.mass_msun": r"$M_\star$ [M$_\odot$]",
+    "star.luminosity_lsun": r"$L_\star$ [L$_\odot$]",
+    "disk.alpha": r"$\alpha$",
+    "disk.m_disk_msun": r"$M_{\rm disk}$ [M$_\odot$]",
+    "disk.r_c_au": r"$r_{\rm c}$ [au]",
+    "disk.sigma_1au": r"$\Sigma_{\rm g}$(1 au) [g cm$^{-2}$]",
+    "disk.T_1au": r"$T$(1 au) [K]",
+    "disk.p": r"$p$ ($\Sigma_{\rm g} \propto r^{-p}$)",
+    "disk.q": r"$q$ ($T \propto r^{-q}$)",
+    "dust.dust_to_gas": r"$Z$ (dust-to-gas)",
+    "erosion.v_eros_m_s": r"$v_{\rm eros}$ [m s$^{-1}$]",
+    "fragmentation.v_frag_ice_m_s": r"$v_{\rm frag,ice}$ [m s$^{-1}$]",
+    "fragmentation.v_frag_sil_m_s": r"$v_{\rm frag,sil}$ [m s$^{-1}$]",
+    "growth.f_grow": r"$f_{\rm grow}$",
+    "porosity.s_hs": r"$s_{\rm hs}$",
+    "grid.n_cells": r"$N$ (cells)",
+    "solver.rtol": "rtol",
+}
+OUTCOME_LABELS = {
+    "m_pl_coag": r"$M_{\rm pl}$, coagulation",
+    "m_pl_si": r"$M_{\rm pl}$, streaming instability",
+    "m_peb_snowline": "pebbles through the snow line",
+    "m_peb_r_in": r"pebbles through $r_{\rm in}$",
+    "m_dust_final": "dust left on the grid",
+    "t_first_pl_min": "first planetesimals",
+    "r_min_pl_coag": r"inner edge, coagulation zone",
+    "r_max_pl_coag": r"outer edge, coagulation zone",
+    "r_min_pl_si": r"inner edge, SI zone",
+    "r_max_pl_si": r"outer edge, SI zone",
+}
+UNIT_TEX = {"M_earth": r"M$_\oplus$", "au": "au", "yr": "yr", "M_sun": r"M$_\odot$"}
+_SUFFIX_UNITS = (("_msun", r"M$_\odot$"), ("_lsun", r"L$_\odot$"), ("_au", "au"),
+                 ("_yr", "yr"), ("_m_s", r"m s$^{-1}$"), ("_um", r"$\mu$m"))
+
+
+def key_label(key):
+    """Axis label of a scene key: its typeset name and unit (KEY_LABELS), else the key
+    with the unit of its suffix (`_au`, `_msun`, ...)."""
+    if key in KEY_LABELS:
+        return KEY_LABELS[key]
+    for suffix, unit in _SUFFIX_UNITS:
+        if key.endswith(suffix):
+            return f"{key} [{unit}]"
+    return key
+
+
 def _str(v):
+    """An HDF5 string (bytes or str) as str."""
     return v.decode() if isinstance(v, bytes) else str(v)
 
 
 def load_summary(scan_dir):
     """The summary table: dict with 'status', 'name', 'axes' {key: (values, spacing)},
-    'outcome' {name: values}, 'units' {name: units attribute}, 'sampling'."""
-    with h5py.File(os.path.join(scan_dir, "summary.h5"), "r") as f:
+    'outcome' {name: values}, 'units' {name: units attribute}, 'sampling', 'scene' (the
+    base scene's name)."""
+    path = os.path.join(scan_dir, "summary.h5")
+    if not os.path.isfile(path):
+        raise FileNotFoundError(f"{path} not found: give the directory of `panoptic scan "
+                                f"... -o DIR` (the summary is written when its runs end)")
+    with h5py.File(path, "r") as f:
         dec = lambda a: np.array([x.decode() for x in a])  # noqa: E731
         axes = {}
         for k in _str(f.attrs["axes"]).split(","):
@@ -57,6 +113,7 @@ def load_summary(scan_dir):
             axes[k] = (v, sp)
         return {"status": dec(f["runs/status"][()]), "name": dec(f["runs/name"][()]),
                 "axes": axes, "sampling": _str(f.attrs["sampling"]),
+                "scene": os.path.splitext(os.path.basename(_str(f.attrs.get("scene", ""))))[0],
                 "outcome": {k: ds[()] for k, ds in f["outcome"].items()},
                 "units": {k: _str(ds.attrs.get("units", "")) for k, ds in f["outcome"].items()}}
 
@@ -90,6 +147,8 @@ def edges(v, log):
 
 
 def norm_for(z):
+    """A log colour scale for positive values over more than two decades (the lowest
+    1e-6 of the largest), else None (linear)."""
     good = z[np.isfinite(z)]
     pos = good[good > 0]
     if len(pos) and good.min() >= 0:
@@ -104,7 +163,19 @@ def label(name, s):
     """Axis label with the outcome's units: the summary's `units` attribute (summaries
     written before it was filled in have "": then the table above)."""
     units = s.get("units", {}).get(name) or UNITS.get(name, "")
-    return f"{name} [{units}]" if units else name
+    text = OUTCOME_LABELS.get(name, name)
+    return f"{text} [{UNIT_TEX.get(units, units)}]" if units else text
+
+
+def sampled_ticks(ax, which, values, log):
+    """Ticks at the sampled values of an axis of at most 10 of them (labels %.3g), so
+    that every run's value can be read off."""
+    v = np.unique(values)
+    if len(v) > 10:
+        return
+    axis = ax.xaxis if which == "x" else ax.yaxis
+    axis.set_ticks(v, labels=[f"{x:.3g}" for x in v])
+    axis.set_minor_locator(matplotlib.ticker.NullLocator())
 
 
 def fixed_elsewhere(s, key, sel):
@@ -139,7 +210,8 @@ def line_figure(s, key, outcomes, path):
     if others:
         vals = np.unique(s["axes"][others[0]][0])
         if len(vals) <= 8 and len(vals) < len(x):    # values shared by runs (not LHS)
-            groups = [(f"{others[0]} = {v:.4g}", s["axes"][others[0]][0] == v) for v in vals]
+            groups = [(f"{key_label(others[0]).split(' [')[0]} = {v:.4g}",
+                       s["axes"][others[0]][0] == v) for v in vals]
     joined = [fixed_elsewhere(s, key, sel) for _, sel in groups]
     ok = s["status"] == "completed"
     n = len(outcomes)
@@ -153,16 +225,20 @@ def line_figure(s, key, outcomes, path):
         for (lab, sel), line in zip(groups, joined):
             m = sel & ok & np.isfinite(z)
             order = np.argsort(x[m])
-            ax.plot(x[m][order], z[m][order], "o-" if line else "o", ms=3, label=lab)
+            # lines of equal values would hide each other: drawn see-through, later
+            # ones thinner
+            ax.plot(x[m][order], z[m][order], "o-" if line else "o", ms=3, label=lab,
+                    alpha=0.8, lw=max(0.8, 2.2 - 0.2 * len(ax.lines)))
         bad, nan = ~ok, ok & ~np.isfinite(z)
         mark_missing(ax, x, None, bad, nan, label_runs=True)
         if spacing == "log":
             ax.set_xscale("log")
+        sampled_ticks(ax, "x", x, spacing == "log")
         norm = norm_for(z)
         if norm is not None:
             ax.set_yscale("log")
             ax.set_ylim(norm.vmin / 2, norm.vmax * 2)
-        ax.set_xlabel(key)
+        ax.set_xlabel(key_label(key))
         ax.set_ylabel(label(o, s))
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
@@ -170,7 +246,7 @@ def line_figure(s, key, outcomes, path):
         other = ", ".join(k for k in s["axes"] if k != key)
         fig.suptitle(f"points not joined: the other axes ({other}) vary between them",
                      fontsize=9)
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=150)
     return fig
 
 
@@ -189,6 +265,15 @@ def map_figure(s, kx, ky, o, path):
         xs, ys, Z = g
         im = ax.pcolormesh(edges(xs, sx == "log"), edges(ys, sy == "log"),
                            np.ma.masked_invalid(Z), norm=norm, shading="flat")
+        if Z.size <= 64:  # the value of each run, readable on its cell
+            for j, yv in enumerate(ys):
+                for i, xv in enumerate(xs):
+                    if np.isfinite(Z[j, i]):
+                        ax.text(xv, yv, f"{Z[j, i]:.3g}", ha="center", va="center",
+                                fontsize=7, color="w",
+                                path_effects=[patheffects.withStroke(linewidth=1.5,
+                                                                     foreground="k")])
+
     else:
         m = np.isfinite(z)
         im = ax.scatter(x[m], y[m], c=z[m], norm=norm, s=28, edgecolors="none")
@@ -200,15 +285,20 @@ def map_figure(s, kx, ky, o, path):
         ax.set_xscale("log")
     if sy == "log":
         ax.set_yscale("log")
-    ax.set_xlabel(kx)
-    ax.set_ylabel(ky)
-    ax.set_title(o, fontsize=10)
+    if g is not None:  # after the scales, which reset the tick locators
+        sampled_ticks(ax, "x", g[0], sx == "log")
+        sampled_ticks(ax, "y", g[1], sy == "log")
+    ax.set_xlabel(key_label(kx))
+    ax.set_ylabel(key_label(ky))
+    ax.set_title(f"{OUTCOME_LABELS.get(o, o)} ({s.get('scene') or 'scan'}, "
+                 f"{len(z)} runs)", fontsize=10)
     fig.colorbar(im, ax=ax, label=label(o, s))
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=150)
     return fig
 
 
 def main(argv=None):
+    """Command line: the figures of DIR/summary.h5 into OUTDIR; returns the exit status."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("scan_dir")
     ap.add_argument("-o", "--outdir")
@@ -216,7 +306,10 @@ def main(argv=None):
                                    "first two numeric axes)")
     ap.add_argument("--outcomes", help="comma-separated /summary names")
     a = ap.parse_args(argv)
-    s = load_summary(a.scan_dir)
+    try:
+        s = load_summary(a.scan_dir)
+    except FileNotFoundError as err:
+        sys.exit(f"plot_scan: {err}")
     outdir = a.outdir or os.path.join(a.scan_dir, "plots")
     os.makedirs(outdir, exist_ok=True)
     numeric = [k for k, (v, _) in s["axes"].items() if v.dtype.kind == "f"]

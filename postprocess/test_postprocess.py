@@ -642,7 +642,8 @@ def check_plot_scan(tmp):
     assert np.allclose(circle.get_xdata(), [1.0])
     assert not marker_lines(ax_m, "completed, no value (NaN)")
     # one joined line per alpha: the runs of a line differ only in the mass
-    data = [line for line in ax_m.get_lines() if line.get_label().startswith("disk.alpha")]
+    alpha_label = plot_scan.key_label("disk.alpha")   # typeset: "$\\alpha$"
+    data = [line for line in ax_m.get_lines() if line.get_label().startswith(alpha_label)]
     assert [line.get_linestyle() for line in data] == ["-", "-"]
     assert np.allclose(data[0].get_ydata(), [1.0, 3.0, 5.0]), data[0].get_ydata()
     assert np.allclose(data[1].get_ydata(), [0.0, 6.0]), data[1].get_ydata()
@@ -656,6 +657,12 @@ def check_plot_scan(tmp):
     cross, = marker_lines(ax, "not completed")
     assert np.allclose(circle.get_xydata(), [[1.0, 1e-2]]) and np.allclose(
         cross.get_xydata(), [[0.5, 1e-2]])
+    # each run's value written on its cell, ticks at the sampled values, typeset labels
+    texts = sorted(t.get_text() for t in ax.texts)
+    assert texts == sorted(["700", "300", "100", "50"]), texts
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["0.5", "1", "2"], \
+        [t.get_text() for t in ax.get_xticklabels()]
+    assert ax.get_xlabel() == plot_scan.KEY_LABELS["star.mass_msun"]
 
     # Latin hypercube over three axes: points not joined, the NaN run marked on the map
     rng = np.random.default_rng(1)
