@@ -11,7 +11,7 @@ import os
 import sys
 
 import numpy as np
-from matplotlib import colormaps, colors
+from matplotlib import colormaps, colors, ticker
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.cm import ScalarMappable
 from matplotlib.figure import Figure
@@ -143,10 +143,21 @@ def add_time_colorbar(fig, ax, norm, times):
     colorbar.ax.hlines(times[times > 0], 0.0, 0.3, colors="w", lw=0.9)
 
 
+def label_minor_log_ticks(axis, lo, hi):
+    """Label the minor ticks 2, 3 and 5 x 10^n of a log axis spanning less than two
+    decades (lo, hi > 0), where the decade labels alone are too few."""
+    if hi / lo < 100.0:
+        axis.set_minor_formatter(ticker.FuncFormatter(
+            lambda x, _: f"{x:g}" if round(x / 10.0 ** np.floor(np.log10(x) + 1e-9), 6)
+            in (2.0, 3.0, 5.0) else ""))
+        axis.set_major_formatter(ticker.FuncFormatter(lambda x, _: f"{x:g}"))
+
+
 def finish(fig, ax, run, indices, norm, ylabel, out_path):
     """Labels, time colour bar, legend, title and provenance; save to out_path. The title
     gives t_end, or for an unfinished run (killed, stopped or failed) its last snapshot."""
     ax.set_xlim(run.r_f[0], run.r_f[-1])
+    label_minor_log_ticks(ax.xaxis, run.r_f[0], run.r_f[-1])  # a grid of < 2 decades
     ax.set_xlabel(r"$r$ [au]")
     ax.set_ylabel(ylabel)
     if norm is not None:
@@ -159,7 +170,8 @@ def finish(fig, ax, run, indices, norm, ylabel, out_path):
                  fontsize=11)
     fig.text(0.995, 0.005, _provenance(run), ha="right", va="bottom", fontsize=6,
              color="0.5")
-    fig.savefig(out_path)
+    if out_path is not None:  # None: only the Figure, returned (a notebook)
+        fig.savefig(out_path)
     return fig
 
 

@@ -124,10 +124,12 @@ def title(run, what):
 
 
 def save(fig, run, out_path):
-    """Provenance footer and savefig."""
+    """Provenance footer, and savefig unless out_path is None (in a notebook: every
+    plot_* function returns its Figure)."""
     fig.text(0.995, 0.002, plot._provenance(run), ha="right", va="bottom", fontsize=6,
              color="0.5")
-    fig.savefig(out_path)
+    if out_path is not None:
+        fig.savefig(out_path)
 
 
 def note(ax, text, y=0.5):
@@ -232,14 +234,7 @@ def mask_outline(mask, x_edges, y_edges):
     return segments
 
 
-def label_minor_log_ticks(axis, lo, hi):
-    """Label the minor ticks 2, 3 and 5 x 10^n of a log axis spanning less than two
-    decades (lo, hi > 0), where the decade labels alone are too few."""
-    if hi / lo < 100.0:
-        axis.set_minor_formatter(ticker.FuncFormatter(
-            lambda x, _: f"{x:g}" if round(x / 10.0 ** np.floor(np.log10(x) + 1e-9), 6)
-            in (2.0, 3.0, 5.0) else ""))
-        axis.set_major_formatter(ticker.FuncFormatter(lambda x, _: f"{x:g}"))
+label_minor_log_ticks = plot.label_minor_log_ticks
 
 
 def mark_snow_line(ax, run, view=None, **style):
@@ -323,6 +318,7 @@ def plot_map(run, out_path, field, quantity, cmap, decades, vmax=None, mask_no_d
                   handlelength=2.2)
     fig.suptitle(title(run, f"{quantity}(r, t)"), fontsize=11)
     save(fig, run, out_path)
+    return fig
 
 
 def dust_to_gas(run):
@@ -486,6 +482,7 @@ def plot_pebble_flux(run, out_path):
         fig.text(0.005, 0.002, f"from the {source} (no /timeseries)", fontsize=6, color="0.5",
                  va="bottom")
     save(fig, run, out_path)
+    return fig
 
 
 def set_decades_ylim(ax, values, decades):
@@ -569,6 +566,7 @@ def plot_sigma_pl(run, out_path):
     fig.suptitle(title(run, f"planetesimals at {plot.format_years(run.time[last])}"),
                  fontsize=11)
     save(fig, run, out_path)
+    return fig
 
 
 def zone_view(run, formed):
@@ -683,6 +681,7 @@ def plot_mass_budget(run, out_path):
         fig.text(0.005, 0.002, f"from the {source} (no /timeseries)", fontsize=6, color="0.5",
                  va="bottom")
     save(fig, run, out_path)
+    return fig
 
 
 # --- command line ----------------------------------------------------------------------

@@ -405,6 +405,19 @@ def check_plot_run_full(tmp):
     return f"plot_run.main writes all {len(ALL_PNGS)} PNGs (default outdir and -o)"
 
 
+def check_plot_functions_return_figures(tmp):
+    """Every figure function returns its Figure and, given no path, writes nothing (for
+    notebooks)."""
+    path = os.path.join(tmp, "nb_run.h5")
+    write_full_run(path)
+    run = reader.load_run(path)
+    before = set(os.listdir(tmp))
+    figs = [job(None) for _, job in plot_run.figures(run)]
+    assert all(hasattr(f, "savefig") and f.axes for f in figs), figs
+    assert set(os.listdir(tmp)) == before, set(os.listdir(tmp)) - before
+    return f"the {len(figs)} figure functions return Figures and write nothing without a path"
+
+
 def check_plot_run_transport_only(tmp):
     path = os.path.join(tmp, "transport.h5")
     write_run(path)           # older layout: no phi, no planetesimals, no /timeseries
@@ -866,6 +879,7 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
           check_i0e_vs_numpy, check_i0e_large_x, check_ring_mass, check_ring_gaussian_limit,
           check_lbp, check_drift_velocity, check_snapshot_selection, check_plot,
           check_plot_single_snapshot, check_plot_run_helpers, check_plot_run_full,
+          check_plot_functions_return_figures,
           check_plot_run_formed_threshold,
           check_snow_line_off, check_t_first_off_axis_label, check_plot_scan,
           check_dust_to_gas_map_centre, check_plot_unfinished_title,
