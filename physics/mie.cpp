@@ -26,10 +26,19 @@ MieEfficiencies mie_series(cplx m, double x) {
   const int n_mx = static_cast<int>(std::max<double>(n_stop, std::abs(y)) +
                                     8.0 * std::cbrt(std::abs(y))) +
                    15;
-  std::vector<cplx> d(static_cast<std::size_t>(n_mx) + 1, cplx(0.0, 0.0));
+  // Only D_1 .. D_{n_stop} are used: the recurrence above n_stop runs in a scalar, so
+  // that the memory is O(x), not O(|m| x) (a table with |m| ~ 1e3 at x = 1e4 took 224
+  // MB).
+  std::vector<cplx> d(static_cast<std::size_t>(n_stop) + 2, cplx(0.0, 0.0));
+  cplx d_above(0.0, 0.0);  // D_n for the n of the loop, above the stored range
   for (int n = n_mx; n >= 2; --n) {
     const cplx ny = static_cast<double>(n) / y;
-    d[n - 1] = ny - 1.0 / (d[n] + ny);
+    const cplx d_n = n <= n_stop + 1 ? d[n] : d_above;
+    const cplx d_below = ny - 1.0 / (d_n + ny);  // D_{n-1}
+    if (n - 1 <= n_stop + 1)
+      d[n - 1] = d_below;
+    else
+      d_above = d_below;
   }
   // Riccati-Bessel psi_n(x) = x j_n(x), chi_n(x) = -x y_n(x), xi_n = psi_n - i chi_n
   double psi0 = std::cos(x), psi1 = std::sin(x);
