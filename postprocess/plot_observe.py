@@ -4,7 +4,9 @@
 
 writes into OUTDIR (default: OBS_plots/ next to OBS.h5) and prints the path of each:
     image_<lambda>mm.png   model image [Jy/arcsec^2] and beam-convolved image [Jy/beam],
-                           east to the left, north up, beam ellipse in the corner
+                           east to the left, north up, beam ellipse in the corner;
+                           square-root colour stretch, zoomed to the radius holding 99.5 %
+                           of the flux (x 1.3, at least 3 beams)
     profiles.png           deprojected, azimuthally averaged profiles of the convolved
                            images [Jy/beam] vs radius [au], with the model intensity at
                            the cell centres times the beam area (dashed)
@@ -17,7 +19,7 @@ import sys
 
 import h5py
 import numpy as np
-from matplotlib import colormaps
+from matplotlib import colormaps, colors
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.patches import Ellipse
@@ -48,7 +50,26 @@ def lam_label(lam):
     return f"{lam:g} mm"
 
 
+def field_of_view(d, l):
+    """Half-width [arcsec] of the view of wavelength l: the radius holding 99.5 % of the
+    convolved image's flux, times 1.3, at least 3 beams and at most the image's."""
+    x = d["image/x_arcsec"]
+    img = np.clip(np.nan_to_num(d["image/convolved"][l]), 0.0, None)
+    half = 0.5 * (x[-1] - x[0]) + 0.5 * d["pixel_arcsec"]
+    if img.sum() <= 0:
+        return half
+    xx, yy = np.meshgrid(x, x)
+    rr = np.hypot(xx, yy).ravel()
+    order = np.argsort(rr)
+    cum = np.cumsum(img.ravel()[order])
+    r995 = rr[order][min(np.searchsorted(cum, 0.995 * cum[-1]), len(rr) - 1)]
+    return float(min(half, max(1.3 * r995, 3.0 * d["beam_bmaj_arcsec"])))
+
+
 def plot_images(d, outdir, title):
+    """One figure per wavelength: model and convolved images, a square-root colour
+    stretch (faint outer emission visible next to a bright centre), zoomed to the
+    emission (field_of_view), beam ellipse in the corner."""
     x = d["image/x_arcsec"]
     ext = [x[0] - d["pixel_arcsec"] / 2, x[-1] + d["pixel_arcsec"] / 2] * 2
     paths = []
@@ -61,19 +82,21 @@ def plot_images(d, outdir, title):
             img = d[key][l]
             vmax = np.nanmax(img) if np.nanmax(img) > 0 else 1.0
             im = ax.imshow(img, origin="lower", extent=ext, cmap=colormaps["inferno"],
-                           vmin=0.0, vmax=vmax, interpolation="nearest")
-            ax.set_xlim(ext[1], ext[0])   # east to the left
-            ax.set_ylim(ext[2], ext[3])
+                           norm=colors.PowerNorm(0.5, vmin=0.0, vmax=vmax),
+                           interpolation="nearest")
+            fov = field_of_view(d, l)
+            ax.set_xlim(fov, -fov)   # east to the left
+            ax.set_ylim(-fov, fov)
             ax.set_xlabel(r"$\Delta\alpha$ (east) [arcsec]")
             ax.set_ylabel(r"$\Delta\delta$ (north) [arcsec]")
             ax.set_title(f"{lam_label(lam)}: {name}", fontsize=10)
-            fig.colorbar(im, ax=ax, label=unit, shrink=0.85)
+            fig.colorbar(im, ax=ax, label=unit + " (square-root stretch)", shrink=0.85)
             if ax_i == 1:
                 bmaj, bmin = d["beam_bmaj_arcsec"], d["beam_bmin_arcsec"]
                 # matplotlib's angle: counter-clockwise from +x of the data; with east
                 # to the left, PA (north through east) is 90 deg + PA from +x (west)
-                cx = ext[1] - 1.0 * bmaj
-                cy = ext[2] + 1.0 * bmaj
+                cx = fov - 1.0 * bmaj
+                cy = -fov + 1.0 * bmaj
                 ax.add_patch(Ellipse((cx, cy), bmin, bmaj, angle=-d["beam_pa_deg"],
                                      fc="none", ec="w", lw=1.2))
         fig.suptitle(title, fontsize=10)
