@@ -75,8 +75,18 @@ void DiskModel::jacobian_cells(double t, std::span<const double> y,
             values.begin() + cp[layout_->index(std::min(n, hi + 2), 0)], 0.0);
   std::fill(values.begin() + cp[layout_->index(n, 0)], values.end(), 0.0);
   JacobianValues jac(pattern_, values);
-  for (const auto& m : modules_)
-    if (!active_ || active_(m->name())) m->add_jacobian_cells(t, y, jac, lo, hi);
+  for (const auto& m : modules_) {
+    if (active_ && !active_(m->name())) continue;
+    try {
+      m->add_jacobian_cells(t, y, jac, lo, hi);
+    } catch (const PatternMiss& e) {
+      throw std::logic_error(
+          "module " + std::string(m->name()) + " wrote the Jacobian entry d(" +
+          layout_->describe(e.row) + ")/d(" + layout_->describe(e.col) +
+          "), which its declare_pattern did not declare: add it there (README, Adding a "
+          "physical process)");
+    }
+  }
 }
 
 std::string DiskModel::describe(long index, std::span<const double> y) const noexcept {

@@ -34,11 +34,15 @@ void SparsityPattern::copy_structure_to(sunindextype* colptrs,
   std::copy(row_index_.begin(), row_index_.end(), rowvals);
 }
 
+PatternMiss::PatternMiss(long r, long c)
+    : std::logic_error("Jacobian entry (" + std::to_string(r) + ", " + std::to_string(c) +
+                       ") is outside the declared pattern"),
+      row(r),
+      col(c) {}
+
 void JacobianValues::add(long row, long col, double v) {
   const long p = pattern_.position(row, col);
-  if (p < 0)
-    throw std::logic_error("Jacobian entry (" + std::to_string(row) + ", " +
-                           std::to_string(col) + ") is outside the declared pattern");
+  if (p < 0) throw PatternMiss(row, col);
   values_[p] += v;
 }
 

@@ -7,6 +7,7 @@
 
 #include <set>
 #include <span>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -45,6 +46,13 @@ class SparsityPattern {
 };
 
 //! The value array of a Jacobian in the pattern: modules add their dF/dy into it.
+//! A Jacobian entry written outside the declared pattern (a programming error of the
+//! module that wrote it; DiskModel names the module and the variables).
+struct PatternMiss : std::logic_error {
+  PatternMiss(long r, long c);
+  long row, col;
+};
+
 class JacobianValues {
  public:
   JacobianValues(const SparsityPattern& pattern, std::span<double> values)

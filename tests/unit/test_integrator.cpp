@@ -292,3 +292,52 @@ TEST(Integrator, WeightedRmsNormMatchesSundials) {
   }
   SUNContext_Free(&ctx);
 }
+
+namespace {
+
+//! Two cells of y; its Jacobian writes d(y of cell 1)/d(y of cell 0), which its pattern
+//! does not declare (the mistake a new module makes).
+class UndeclaredCoupling : public PhysicsModule {
+ public:
+  explicit UndeclaredCoupling(StateLayout& layout) {
+    layout.add_cell_var({"y", "g", "", 1.0, true});
+  }
+  std::string_view name() const override { return "undeclared_coupling"; }
+  void declare_pattern(PatternBuilder& p) const override {
+    p.add(0, 0);
+    p.add(1, 1);
+  }
+  void add_rhs(double, std::span<const double> y, std::span<double> ydot) const override {
+    ydot[0] -= y[0];
+    ydot[1] += y[0] - y[1];
+  }
+  void add_jacobian(double, std::span<const double>, JacobianValues& jac) const override {
+    jac.add(0, 0, -1.0);
+    jac.add(1, 1, -1.0);
+    jac.add(1, 0, 1.0);  // not declared
+  }
+};
+
+}  // namespace
+
+TEST(DiskModel, AnUndeclaredJacobianEntryNamesTheModuleAndTheVariables) {
+  auto layout = std::make_shared<StateLayout>(2);
+  std::vector<std::unique_ptr<PhysicsModule>> mods;
+  mods.push_back(std::make_unique<UndeclaredCoupling>(*layout));
+  layout->freeze();
+  DiskModel model(layout, std::move(mods));
+  const double y[2] = {1.0, 0.5};
+  std::vector<double> values(model.pattern().nnz());
+  try {
+    model.jacobian(0.0, y, values);
+    FAIL() << "expected a logic_error";
+  } catch (const std::logic_error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("module undeclared_coupling wrote the Jacobian entry d("),
+              std::string::npos)
+        << msg;
+    EXPECT_NE(msg.find(layout->describe(1)), std::string::npos) << msg;
+    EXPECT_NE(msg.find(layout->describe(0)), std::string::npos) << msg;
+    EXPECT_NE(msg.find("declare_pattern"), std::string::npos) << msg;
+  }
+}
