@@ -365,4 +365,20 @@ std::vector<double> DustTransport::face_velocity(std::span<const double> y) cons
   return out;
 }
 
+std::vector<BudgetTerm> DustTransport::budget_terms() const {
+  return {{"m_out_inner", "through r_in", "cumulative dust mass that left through r_in",
+           true, [this](std::span<const double> y) { return mass_out(y); }},
+          {"m_sublimated", "sublimated",
+           "cumulative ice that sublimated at the snow line (spec §6.3)", true,
+           [this](std::span<const double> y) { return mass_sublimated(y); }}};
+}
+
+double DustTransport::mass_out(std::span<const double> y) const {
+  return y[layout_.global_index(g_out_)] * mass_unit_;
+}
+
+double DustTransport::mass_sublimated(std::span<const double> y) const {
+  return g_sub_ < 0 ? 0.0 : y[layout_.global_index(g_sub_)] * mass_unit_;
+}
+
 }  // namespace panoptic

@@ -80,6 +80,11 @@ class DustTransport : public PhysicsModule {
 
   int sigma_slot() const { return slot_; }
   int m_out_slot() const { return g_out_; }
+  //! The budget terms it books: the mass through r_in (m_out_inner) and the ice
+  //! sublimated at the snow line (m_sublimated; 0 without a snow line) [g].
+  std::vector<BudgetTerm> budget_terms() const override;
+  double mass_out(std::span<const double> y) const;         //!< through r_in [g]
+  double mass_sublimated(std::span<const double> y) const;  //!< at the snow line [g]
   double mass_unit() const { return mass_unit_; }
   //! Dust mass flow through every face, positive outward [g s^-1]; n_cells + 1 entries.
   std::vector<double> mass_flow(std::span<const double> y) const;

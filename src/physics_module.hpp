@@ -7,12 +7,31 @@
 //! NEW_PROCESS: derive from PhysicsModule, register its variables with the StateLayout in
 //! its constructor, and build it in Simulation (src/simulation.cpp) when the scene turns
 //! it on (README "Adding a physical process").
+#include <functional>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "src/sparsity.hpp"
 
 namespace panoptic {
+
+//! One term of the dust mass budget (spec §8): a place where part of the initial dust
+//! mass is now (on the grid, in planetesimals, through r_in, sublimated, ...). The terms
+//! sum to the initial dust mass up to the integration error, so a process that removes
+//! dust from Sigma_d books what it removes and declares a term (PhysicsModule::
+//! budget_terms; the built-in ones in Simulation's constructor): the term is then
+//! written to /snapshots/<name> (when `in_snapshots`), to a column of
+//! /timeseries/mass_budget, and counted in the budget error, the printed budget and
+//! /summary/budget_error.
+struct BudgetTerm {
+  std::string name;          //!< dataset and column name ("m_out_inner")
+  std::string label;         //!< short text for the printed budget ("through r_in")
+  std::string description;   //!< dataset description
+  bool in_snapshots = true;  //!< false: a column of the time series only (process off)
+  std::function<double(std::span<const double>)> mass;  //!< [g] at state y
+};
 
 class PhysicsModule {
  public:
@@ -37,6 +56,11 @@ class PhysicsModule {
     (void)lo, (void)hi;
     add_rhs(t, y, ydot);
   }
+  //! The mass-budget terms this module books (a sink of dust: what it has removed, at
+  //! state y, in g), after the built-in ones in Simulation::budget_terms(); none by
+  //! default. The module is built only when its process is on, so its terms are written
+  //! to the snapshots (in_snapshots = true).
+  virtual std::vector<BudgetTerm> budget_terms() const { return {}; }
   //! add_jacobian() on the same rows as add_rhs_cells().
   virtual void add_jacobian_cells(double t, std::span<const double> y,
                                   JacobianValues& jac, int lo, int hi) const {

@@ -405,12 +405,11 @@ Simulation::Simulation(const Config& cfg)
        [this](std::span<const double> y) { return planetesimal_mass(y).first; }},
       {"m_pl_si", "planetesimals (SI)", "planetesimal mass by streaming instability", pl,
        [this](std::span<const double> y) { return planetesimal_mass(y).second; }},
-      {"m_out_inner", "through r_in", "cumulative dust mass that left through r_in", true,
-       [this](std::span<const double> y) { return dust_mass_out(y); }},
-      {"m_sublimated", "sublimated",
-       "cumulative ice that sublimated at the snow line (spec §6.3)", true,
-       [this](std::span<const double> y) { return dust_mass_sublimated(y); }},
   };
+  // then those the modules declare, in their order: the transport's m_out_inner and
+  // m_sublimated, and those of a process added later (README, Adding a physical process)
+  for (const auto& m : modules)
+    for (BudgetTerm& term : m->budget_terms()) budget_terms_.push_back(std::move(term));
   layout_->freeze();
   model_ = std::make_unique<DiskModel>(layout_, std::move(modules));
   model_->set_describer(
@@ -733,7 +732,7 @@ double Simulation::dust_mass_on_grid(std::span<const double> y) const {
 }
 
 double Simulation::dust_mass_out(std::span<const double> y) const {
-  return y[layout_->global_index(transport_->m_out_slot())] * transport_->mass_unit();
+  return transport_->mass_out(y);
 }
 
 std::vector<double> Simulation::sigma_pl(std::span<const double> y, bool si) const {
@@ -781,8 +780,7 @@ double Simulation::budget_error(std::span<const double> y) const {
 }
 
 double Simulation::dust_mass_sublimated(std::span<const double> y) const {
-  const int g = transport_->sublimated_slot();
-  return g < 0 ? 0.0 : y[layout_->global_index(g)] * transport_->mass_unit();
+  return transport_->mass_sublimated(y);
 }
 
 std::string Simulation::summary() const {

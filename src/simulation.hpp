@@ -56,20 +56,7 @@ struct PebbleMonitor {
   int global_slot = -1;  //!< cumulative-mass variable (m_out_dust for r_in)
 };
 
-//! One term of the dust mass budget (spec §8): a place where part of the initial dust
-//! mass is now (on the grid, in planetesimals, through r_in, sublimated, ...). The terms
-//! sum to the initial dust mass up to the integration error, so a process that removes
-//! dust from Sigma_d books what it removes and registers a term (Simulation's
-//! constructor): the term is then written to /snapshots/<name> (when `in_snapshots`),
-//! to a column of /timeseries/mass_budget, and counted in the budget error, the
-//! printed budget and /summary/budget_error.
-struct BudgetTerm {
-  std::string name;          //!< dataset and column name ("m_out_inner")
-  std::string label;         //!< short text for the printed budget ("through r_in")
-  std::string description;   //!< dataset description
-  bool in_snapshots = true;  //!< false: a column of the time series only (process off)
-  std::function<double(std::span<const double>)> mass;  //!< [g] at state y
-};
+// BudgetTerm: src/physics_module.hpp (a module declares its own).
 
 class Simulation {
  public:
