@@ -85,11 +85,17 @@ void DustTransport::set_snowline(StateLayout& layout, int face, double f_ice,
   snow_face_ = face;
   f_ice_ = f_ice;
   snow_qm_slot_ = qm_slot;
+  g_sub_ =
+      add_booked_mass(layout, "m_sublimated", "ice that sublimated at the snow line");
+}
+
+int DustTransport::add_booked_mass(StateLayout& layout, const std::string& name,
+                                   const std::string& what) const {
+  // the absolute tolerance of Sigma_d over a disk of radius r_out, in these units
   const double r_out = grid_.r_f(grid_.n_cells());
-  g_sub_ = layout.add_global_var(
-      {"m_sublimated", "initial dust mass",
-       "ice that sublimated at the snow line, in units of the "
-       "initial dust mass on the grid",
+  return layout.add_global_var(
+      {name, "initial dust mass",
+       what + ", in units of the initial dust mass on the grid",
        layout.cell_var(slot_).abs_scale * units::kPi * r_out * r_out / mass_unit_,
        false});
 }
@@ -97,13 +103,9 @@ void DustTransport::set_snowline(StateLayout& layout, int face, double f_ice,
 int DustTransport::add_monitor(StateLayout& layout, int face) {
   if (monitor_slot_.empty()) monitor_slot_.assign(grid_.n_cells(), -1);
   if (monitor_slot_[face] >= 0) return monitor_slot_[face];
-  const double r_out = grid_.r_f(grid_.n_cells());
-  monitor_slot_[face] = layout.add_global_var(
-      {"m_through_" + std::to_string(face), "initial dust mass",
-       "dust mass that crossed a face inward (pebble flux, spec §8), "
-       "in units of the initial dust mass on the grid",
-       layout.cell_var(slot_).abs_scale * units::kPi * r_out * r_out / mass_unit_,
-       false});
+  monitor_slot_[face] =
+      add_booked_mass(layout, "m_through_" + std::to_string(face),
+                      "dust mass that crossed a face inward (pebble flux, spec §8)");
   return monitor_slot_[face];
 }
 

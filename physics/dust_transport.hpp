@@ -18,6 +18,7 @@
 //! analytic derivative (the AD vector holds two cells).
 #include <array>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "disk/gas_column.hpp"
@@ -80,6 +81,13 @@ class DustTransport : public PhysicsModule {
 
   int sigma_slot() const { return slot_; }
   int m_out_slot() const { return g_out_; }
+  //! A new global variable booking a dust mass `name` ("m_sublimated"; `what` describes
+  //! it), in units of mass_unit() (the initial dust mass on the grid), in CVODE's error
+  //! test at the absolute tolerance of Sigma_d over the disk, without a >= 0 constraint:
+  //! the variable a sink of dust books what it removes in (README, Adding a physical
+  //! process). Before StateLayout::freeze(); returns its global slot.
+  int add_booked_mass(StateLayout& layout, const std::string& name,
+                      const std::string& what) const;
   //! The budget terms it books: the mass through r_in (m_out_inner) and the ice
   //! sublimated at the snow line (m_sublimated; 0 without a snow line) [g].
   std::vector<BudgetTerm> budget_terms() const override;
