@@ -42,10 +42,17 @@ bool has_hdf5_signature(const std::filesystem::path& path) {
   return n == sizeof head && std::memcmp(head, kSignature, sizeof head) == 0;
 }
 
-void refuse_to_overwrite_non_hdf5(const std::filesystem::path& output) {
+void refuse_to_replace(const std::filesystem::path& output, bool overwrite) {
   std::error_code ec;
   const auto st = std::filesystem::status(output, ec);
   if (!std::filesystem::exists(st)) return;
+  if (std::filesystem::is_directory(st))
+    throw IoError(output.string() +
+                  ": is a directory; give the output file's name with -o");
+  if (!overwrite)
+    throw IoError(output.string() +
+                  ": output file exists; pass --overwrite to replace it, or choose "
+                  "another file with -o");
   if (!std::filesystem::is_regular_file(st))  // a device, a FIFO, a socket
     throw IoError(output.string() +
                   ": exists and is not a regular file; --overwrite replaces only an "

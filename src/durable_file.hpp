@@ -15,10 +15,11 @@ void rename_or_throw(const std::filesystem::path& from, const std::filesystem::p
 //! True when the file begins with the 8-byte HDF5 signature (a file panoptic wrote has
 //! no user block, so the signature is at offset 0; a truncated file keeps it).
 bool has_hdf5_signature(const std::filesystem::path& path);
-//! Throws IoError when `output` exists and is not a regular file (a device, a FIFO) or
-//! is a non-empty file that is not HDF5: --overwrite replaces an earlier output, never
-//! a scene, a note, a script or /dev/null given by mistake.
-void refuse_to_overwrite_non_hdf5(const std::filesystem::path& output);
+//! Throws IoError, naming the fix, when a new output may not be written at `output`:
+//! a directory; an existing file without `overwrite`; with it, anything but an earlier
+//! output (not a regular file, e.g. a device or a FIFO, or a non-empty file that is not
+//! HDF5: a scene, a note or a script given by mistake). Used by run and observe.
+void refuse_to_replace(const std::filesystem::path& output, bool overwrite);
 //! Throws ConfigError when `output` is the file `input` (by identity: links and other
 //! spellings of the path too): --overwrite would replace what the command reads.
 //! `what` names it ("the scene the run reads", "the run's checkpoint").

@@ -210,15 +210,8 @@ int observe(const ObserveArgs& a) {
   const fs::path chk = checkpoint_path(a.run_file);  // nor the run's checkpoints
   for (const fs::path& c : {chk, previous_checkpoint_path(chk)})
     refuse_output_is_input(out_path, c, "a checkpoint of the run");
+  refuse_to_replace(out_path, a.overwrite);
   std::error_code ec;
-  if (fs::is_directory(out_path, ec))
-    throw IoError(out_path.string() +
-                  ": is a directory; give the output file's name with -o");
-  if (a.overwrite) refuse_to_overwrite_non_hdf5(out_path);
-  if (fs::exists(out_path, ec) && !a.overwrite)
-    throw IoError(out_path.string() +
-                  ": output file exists; pass --overwrite to replace it, or choose "
-                  "another file with -o");
 
   // 2 the snapshot, and the scene of the run (with --set observe.* overrides)
   const Snapshot s = read_snapshot(a.run_file, a.time_yr);

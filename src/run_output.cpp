@@ -89,8 +89,9 @@ std::string rebuild(const std::filesystem::path& path) {
          ": the file is damaged); continued in place";
 }
 
-}  // namespace
-
+// Why writing `path` may have failed, as " (reason); fix" or "": the directory or file
+// not writable (errno's text), `err` (the errno of the failed write) a full quota or
+// disk, or less than 1 MiB free on its file system.
 std::string write_failure_hint(const std::filesystem::path& path, int err) {
   const std::filesystem::path dir =
       path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
@@ -112,20 +113,14 @@ std::string write_failure_hint(const std::filesystem::path& path, int err) {
   return "";
 }
 
+}  // namespace
+
 RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
                      const RunMetadata& meta)
     : path_(path) {
   h5::quiet_errors();
+  refuse_to_replace(path, overwrite);
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw IoError(path.string() +
-                  ": is a directory; give the output file's name with -o");
-  if (overwrite) refuse_to_overwrite_non_hdf5(path);
-  if (std::filesystem::exists(path, ec) && !overwrite)
-    throw IoError(
-        path.string() +
-        ": output file exists; pass --overwrite to replace it, or choose another "
-        "file with -o");
   if (path.has_parent_path()) {
     std::filesystem::create_directories(path.parent_path(), ec);
     if (ec)

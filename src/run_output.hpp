@@ -42,11 +42,6 @@ struct ContinueRun {
 std::string mark_lost_rows(hid_t file, const std::string& group, hsize_t rows,
                            const RowDigests& expected, RowDigests& kept);
 
-//! Why writing `path` may have failed, as " (reason); fix" or "": the directory or file
-//! not writable (errno's text), `err` (the errno of the failed write) a full quota or
-//! disk, or less than 1 MiB free on its file system.
-std::string write_failure_hint(const std::filesystem::path& path, int err);
-
 class RunOutput {
  public:
   //! Creates the file (and its directory). An existing file is an IoError unless
