@@ -36,6 +36,8 @@ struct GrowthOptions {
   bool gas_compaction = true;
   bool self_gravity = true;
   ErosionModel erosion = ErosionModel::kNone;
+  //! Erosion on: particle_rates computes dv_ls, and the snapshots write it.
+  bool eroding() const { return erosion != ErosionModel::kNone; }
   double v_eros = 4e3;    //!< [cm s^-1] (spec §5.1)
   double w_eros = 0.01;   //!< switch width (spec §5.2 has 0.05; see scene_keys.cpp)
   double f_s = 0.1;       //!< E2: small-projectile mass fraction

@@ -68,7 +68,7 @@ ParticleRates<T> particle_rates(const T& sigma_d, const T& m, const T& phi, cons
       o.fragmentation && sp.fragments ? fragmentation_factor(r.dv, sp.v_frag) : T(1.0);
   T factor = frag;
   r.dv_ls = T(0.0);
-  if (o.erosion != ErosionModel::kNone)  // spec §5.1-§5.2
+  if (o.eroding())  // spec §5.1-§5.2
     factor = erosion_factor(r.St, m, r.dv, r.h_d, frag, gas, sp, o, r.dv_ls);
   if (o.bouncing)  // spec §5.3: compact aggregates bounce (p_stick -> 0 above phi_bounce)
     factor = factor * bouncing_factor(phi, o.phi_bounce);

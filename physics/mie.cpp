@@ -29,16 +29,16 @@ MieEfficiencies mie_series(cplx m, double x) {
   // Only D_1 .. D_{n_stop} are used: the recurrence above n_stop runs in a scalar, so
   // that the memory is O(x), not O(|m| x) (a table with |m| ~ 1e3 at x = 1e4 took 224
   // MB).
-  std::vector<cplx> d(static_cast<std::size_t>(n_stop) + 2, cplx(0.0, 0.0));
-  cplx d_above(0.0, 0.0);  // D_n for the n of the loop, above the stored range
-  for (int n = n_mx; n >= 2; --n) {
+  cplx d_n(0.0, 0.0);  // D_{n_mx} = 0, then D_{n-1} from D_n down to D_{n_stop + 1}
+  for (int n = n_mx; n > n_stop + 1; --n) {
     const cplx ny = static_cast<double>(n) / y;
-    const cplx d_n = n <= n_stop + 1 ? d[n] : d_above;
-    const cplx d_below = ny - 1.0 / (d_n + ny);  // D_{n-1}
-    if (n - 1 <= n_stop + 1)
-      d[n - 1] = d_below;
-    else
-      d_above = d_below;
+    d_n = ny - 1.0 / (d_n + ny);
+  }
+  std::vector<cplx> d(static_cast<std::size_t>(n_stop) + 2, cplx(0.0, 0.0));
+  d[n_stop + 1] = d_n;
+  for (int n = n_stop + 1; n >= 2; --n) {
+    const cplx ny = static_cast<double>(n) / y;
+    d[n - 1] = ny - 1.0 / (d[n] + ny);
   }
   // Riccati-Bessel psi_n(x) = x j_n(x), chi_n(x) = -x y_n(x), xi_n = psi_n - i chi_n
   double psi0 = std::cos(x), psi1 = std::sin(x);

@@ -654,7 +654,7 @@ void Simulation::prepare_output(RunOutput& out) const {
     out.add_field("rho_int", n, "g cm^-3", "internal density phi rho0");
     out.add_field("dv", n, "cm s^-1", "collision speed used for growth (spec §3)");
     out.add_field("t_grow", n, "yr", "growth time m/|dm/dt| (inf: growth halted)");
-    if (growth_->options().erosion != physics::ErosionModel::kNone)
+    if (growth_->options().eroding())
       out.add_field(
           "dv_ls", n, "cm s^-1",
           "collision speed against the small projectiles, which erosion compares "
@@ -698,7 +698,7 @@ std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
   if (gas_.evolves())
     f["m_out_gas"] = {y[L.global_index(viscous_->m_out_slot())] * viscous_->mass_unit()};
   if (growth_) {
-    const bool erosion = growth_->options().erosion != physics::ErosionModel::kNone;
+    const bool erosion = growth_->options().eroding();
     std::vector<double> m(n), phi(n), a(n), rho(n), dv(n), tg(n), dv_ls(erosion ? n : 0);
     for (int i = 0; i < n; ++i) {
       const double* yc = &y[L.index(i, 0)];
@@ -729,10 +729,6 @@ double Simulation::dust_mass_on_grid(std::span<const double> y) const {
   for (int i = 0; i < grid_.n_cells(); ++i)
     m += y[layout_->index(i, transport_->sigma_slot())] * grid_.area(i);
   return m;
-}
-
-double Simulation::dust_mass_out(std::span<const double> y) const {
-  return transport_->mass_out(y);
 }
 
 std::vector<double> Simulation::sigma_pl(std::span<const double> y, bool si) const {
@@ -777,10 +773,6 @@ double Simulation::budget_error(std::span<const double> y) const {
   double total = 0.0;
   for (const double m : budget_masses(y)) total += m;
   return std::abs(total - dust_mass0_) / dust_mass0_;
-}
-
-double Simulation::dust_mass_sublimated(std::span<const double> y) const {
-  return transport_->mass_sublimated(y);
 }
 
 std::string Simulation::summary() const {

@@ -91,10 +91,8 @@ class Simulation {
   std::map<std::string, std::vector<double>> snapshot_fields(
       std::span<const double> y) const;
 
-  double dust_mass_on_grid(std::span<const double> y) const;     //!< [g]
-  double dust_mass_out(std::span<const double> y) const;         //!< through r_in [g]
-  double dust_mass_sublimated(std::span<const double> y) const;  //!< at the snow line [g]
-  double initial_dust_mass() const { return dust_mass0_; }       //!< [g]
+  double dust_mass_on_grid(std::span<const double> y) const;  //!< [g]
+  double initial_dust_mass() const { return dust_mass0_; }    //!< [g]
   //! The dust mass of the initial profile itself on r_in..r_out, integrated exactly
   //! (GasDisk::mass_between, split at the snow line) [g]: initial_dust_mass() is its
   //! cell-centre quadrature, second order in the cell width. NaN for dust.init =
