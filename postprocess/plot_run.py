@@ -34,10 +34,8 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
 from postprocess import plot
-from postprocess.reader import load_run
+from postprocess.reader import BUILT_IN_BUDGET_TERMS, M_EARTH, MYR, load_run
 
-M_EARTH = 5.972e27            # [g], src/units.hpp kMearth
-MYR = 1e6 * 3.156e7           # [s], src/units.hpp kMyr
 FORMED_FRACTION = 1e-6        # Sigma_pl > this x the largest initial Sigma_d: formed
                               # (src/diagnostics.cpp; /summary/formed_threshold)
 NO_DUST_FRACTION = 1e-6       # Sigma_d < this x initial Sigma_d: cell counted as dust-free
@@ -584,7 +582,7 @@ def zone_view(run, formed):
 
 # --- mass budget -----------------------------------------------------------------------
 
-BUDGET_TERMS = ("m_dust", "m_pl_coag", "m_pl_si", "m_out_inner", "m_sublimated")
+BUDGET_TERMS = BUILT_IN_BUDGET_TERMS
 
 
 def budget_series(run):

@@ -50,6 +50,10 @@ AU = 1.496e13           # [cm]
 YR = 3.156e7            # [s]
 MYR = 1e6 * YR          # [s]
 
+# The mass-budget terms of a file written before the attributes that name them
+# (/snapshots budget_terms, /timeseries mass_budget_columns), in their column order
+BUILT_IN_BUDGET_TERMS = ("m_dust", "m_pl_coag", "m_pl_si", "m_out_inner", "m_sublimated")
+
 
 class Run:
     """Contents of one run file, fully loaded into memory.
@@ -215,7 +219,7 @@ class Run:
             return []
         if self.budget_columns:
             return self.budget_columns
-        default = ["m_dust", "m_pl_coag", "m_pl_si", "m_out_inner", "m_sublimated", "error"]
+        default = [*BUILT_IN_BUDGET_TERMS, "error"]
         return default if self.timeseries["mass_budget"].shape[1] == 6 else []
 
     def _monitor(self, monitor):
