@@ -161,8 +161,17 @@ std::vector<KeySpec> make_keys() {
            "mean molecular weight (§1.1; 0.5 for ionised hydrogen, no gas is heavier "
            "than 100)",
            0.5, false, 100.0, false),
-      real("disk.alpha", "1e-3", "", "Shakura-Sunyaev alpha, D_g = alpha c_s H (§1.5)",
-           0.0, true, 1.0, false),
+      // >= 1e-8: weaker "turbulence" is below the gas's molecular viscosity, which the
+      // model leaves out (alpha_mol = nu_mol / (c_s H) = 2 mu m_H / (sigma_mol Sigma_g),
+      // spec §1.5-1.6: 2.3e-12 at 1 au, 1.2e-8 at 300 au in the MMSN, so the turbulent
+      // Reynolds number of Ormel & Cuzzi's velocities falls to ~1 there), and the dust
+      // settles into ever thinner layers: the fiducial scene to 1 Myr took 185 s at
+      // 1e-7, 39 s at 1e-8 and over 25 min at 1e-10; at 1e-50 it did not reach 100 yr
+      // in 5 min, and at 1e-70 CVODE failed at t = 0.
+      real("disk.alpha", "1e-3", "",
+           "Shakura-Sunyaev alpha, D_g = alpha c_s H (§1.5); below 1e-8 molecular "
+           "viscosity would dominate",
+           1e-8, false, 1.0, false),
       positive("disk.sigma_mol", "2e-15", "cm^2", "molecular cross section (§1.6)"),
       positive("disk.T_sub", "170.0", "K", "water-ice sublimation temperature (§1.7)"),
 

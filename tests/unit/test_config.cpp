@@ -254,7 +254,10 @@ TEST(Config, ExclusiveAndInclusiveMaximum) {
   expect_parts(error_of("[disk]\ngamma = 2\n"),
                {"scene.toml:2:", "disk.gamma = 2", "must be >= -2 and < 2"});
   expect_parts(error_of("[disk]\nalpha = 1.5\n"),
-               {"scene.toml:2:", "disk.alpha = 1.5", "must be > 0 and <= 1"});
+               {"scene.toml:2:", "disk.alpha = 1.5", "must be >= 1e-08 and <= 1"});
+  // below molecular viscosity: the fiducial scene hung at 1e-50 and failed at 1e-70
+  expect_parts(error_of("", {"disk.alpha=1e-9"}),
+               {"--set", "disk.alpha = 1e-9", "must be >= 1e-08 and <= 1"});
   expect_parts(error_of("[solver]\nrtol = 0.2\n"),
                {"scene.toml:2:", "solver.rtol = 0.2", "<= 0.1"});
 }
@@ -458,7 +461,8 @@ TEST(Config, ResolvedTomlReadsBackToTheSameScene) {
       "\\u007F é ∝ 🌍\"\n"
       "reference = '''C:\\path'''\n"
       "[disk]\n"
-      "p = 0.1\nq = 0.30000000000000004\nalpha = 1e-300\nsigma_mol = 5e-324\n"
+      "p = 0.1\nq = 0.30000000000000004\nalpha = 1.2345678901234567e-7\nsigma_mol = "
+      "5e-324\n"
       "sigma_1au = 6.02214076e5\nT_1au = 3\n"
       "[grid]\nn_cells = 100000\n"
       "[pebbles]\nradii_au = [0, 1, 0.1, 1e-7, 123456789012345678, "
