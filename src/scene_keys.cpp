@@ -238,9 +238,12 @@ std::vector<KeySpec> make_keys() {
            "grow the mass-dominating particle (spec §4.1); off: St is prescribed by "
            "transport.St"),
       when({growth_on()},
-           positive("growth.f_grow", "1.0", "",
-                    "multiplier of the coagulation rate (spec §4.1; with erosion.model = "
-                    "\"balance\" of its similar-size term only)")),
+           // <= 100: a calibration factor, not a model; 1e3 took 138 000 steps to 1e4
+           // yr on the fiducial scene, 1e30 failed at t = 0
+           real("growth.f_grow", "1.0", "",
+                "multiplier of the coagulation rate (spec §4.1; with erosion.model = "
+                "\"balance\" of its similar-size term only)",
+                0.0, true, 100.0, false)),
       when({growth_on()}, real("growth.eps", "0.5", "",
                                "size ratio of the collision partner, St2 = eps St (§3)",
                                0.0, true, 1.0, true)),
@@ -288,11 +291,13 @@ std::vector<KeySpec> make_keys() {
       when({growth_on(), erosion({"halt", "balance"})},
            positive("erosion.v_eros_m_s", "40.0", "m s^-1",
                     "erosion threshold speed (§5.1)")),
-      when(
-          {growth_on(), erosion({"halt", "balance"})},
-          positive("erosion.width", "0.01", "",
-                   "width w of the smooth erosion switch (spec §5.2 says 0.05: with fast "
-                   "growth that lets particles overshoot the stall by 20-40% in St)")),
+      when({growth_on(), erosion({"halt", "balance"})},
+           // >= 1e-3: a sharper switch is a step CVODE's Newton iteration cannot cross
+           // (erosion_40 with 1e-30 did not reach 1e3 yr in 40 s; 1e-3: 1e4 yr in 7 s)
+           real("erosion.width", "0.01", "",
+                "width w of the smooth erosion switch (spec §5.2 says 0.05: with fast "
+                "growth that lets particles overshoot the stall by 20-40% in St)",
+                1e-3, false)),
       when({growth_on(), erosion({"balance"})},
            real("erosion.f_s", "0.1", "",
                 "balance: mass fraction of small projectiles (§5.2)", 0.0, false, 1.0,
@@ -338,7 +343,10 @@ std::vector<KeySpec> make_keys() {
 
       // [material] spec §0: monomer constants per species
       when({growth_on()},
-           positive("material.a0_um", "0.1", "micron", "monomer radius (both species)")),
+           // 1 nm - 100 um: interstellar grains span ~5 nm - 1 um; 1e-30 and 1e30
+           // failed at t = 0
+           real("material.a0_um", "0.1", "micron", "monomer radius (both species)", 1e-3,
+                false, 100.0, false)),
       when({growth_on()}, positive("material.xi_crit_angstrom", "8.0", "angstrom",
                                    "critical rolling displacement")),
       when({growth_on()}, positive("material.z0_nm", "0.4", "nm",
@@ -382,8 +390,11 @@ std::vector<KeySpec> make_keys() {
            positive("planetesimals.St_pl", "10.0", "",
                     "St threshold of direct coagulation")),
       when({growth_on(), is("planetesimals.coagulation", {"true"})},
-           positive("planetesimals.tau_pl_omega", "10.0", "",
-                    "conversion time of direct coagulation in units of 1/Omega_K")),
+           // >= 1: no conversion faster than the dynamical time (1e-30 stalled CVODE,
+           // t + h = t, at 200 yr)
+           real("planetesimals.tau_pl_omega", "10.0", "",
+                "conversion time of direct coagulation in units of 1/Omega_K", 1.0,
+                false)),
       choice(
           "planetesimals.si", "none", {"none", "d16", "s18", "zcrit"},
           "streaming instability: d16 = Drazkowska et al. 2016 (zeta Sigma_d Omega for "
@@ -392,11 +403,14 @@ std::vector<KeySpec> make_keys() {
           "St >= 0.01 when Sigma_d/Sigma_g >= Z_crit(St) of Lim et al. 2025 (revised "
           "Li & Youdin 2021 fit, Pi = 0.05) (spec §7.2)"),
       when({si({"d16"})},
-           positive("planetesimals.zeta_d16", "0.01", "", "d16 efficiency")),
-      when({si({"s18"})},
-           positive("planetesimals.zeta_s18", "0.1", "", "s18 efficiency")),
-      when({si({"zcrit"})},
-           positive("planetesimals.zeta_zcrit", "0.01", "", "zcrit efficiency")),
+           // <= 1 (each): no conversion faster than the dynamical time (zeta_d16 = 1e30
+           // stalled CVODE, t + h = t, at 200 yr)
+           real("planetesimals.zeta_d16", "0.01", "", "d16 efficiency", 0.0, true, 1.0,
+                false)),
+      when({si({"s18"})}, real("planetesimals.zeta_s18", "0.1", "", "s18 efficiency", 0.0,
+                               true, 1.0, false)),
+      when({si({"zcrit"})}, real("planetesimals.zeta_zcrit", "0.01", "",
+                                 "zcrit efficiency", 0.0, true, 1.0, false)),
       when({si({"d16", "zcrit"})},
            positive("planetesimals.St_si_min", "0.01", "",
                     "d16 and zcrit: smallest St that takes part")),

@@ -258,6 +258,20 @@ TEST(Config, ExclusiveAndInclusiveMaximum) {
   // below molecular viscosity: the fiducial scene hung at 1e-50 and failed at 1e-70
   expect_parts(error_of("", {"disk.alpha=1e-9"}),
                {"--set", "disk.alpha = 1e-9", "must be >= 1e-08 and <= 1"});
+  // bounds set where a value in the old range (> 0) reached CVODE and failed or stalled
+  // (README, Stability at the extremes)
+  expect_parts(error_of("", {"growth.f_grow=101"}),
+               {"growth.f_grow = 101", "must be > 0 and <= 100"});
+  expect_parts(error_of("[erosion]\nmodel = \"halt\"\nwidth = 9e-4\n"),
+               {"erosion.width = 9e-4", "must be >= 0.001"});
+  expect_parts(error_of("", {"material.a0_um=9e-4"}),
+               {"material.a0_um = 9e-4", "must be >= 0.001 and <= 100 [micron]"});
+  expect_parts(error_of("", {"material.a0_um=101"}),
+               {"material.a0_um = 101", "must be >= 0.001 and <= 100 [micron]"});
+  expect_parts(error_of("", {"planetesimals.tau_pl_omega=0.9"}),
+               {"planetesimals.tau_pl_omega = 0.9", "must be >= 1"});
+  expect_parts(error_of("", {"planetesimals.si=\"d16\"", "planetesimals.zeta_d16=1.5"}),
+               {"planetesimals.zeta_d16 = 1.5", "must be > 0 and <= 1"});
   expect_parts(error_of("[solver]\nrtol = 0.2\n"),
                {"scene.toml:2:", "solver.rtol = 0.2", "<= 0.1"});
 }
