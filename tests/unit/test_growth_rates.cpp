@@ -552,6 +552,33 @@ TEST(GrowthFillingFactor, HitAndStickAndCompressionSlopes) {
   EXPECT_NEAR(r.dlnphi_dt / r.dlnm_dt, -0.5, 1e-6);
 }
 
+TEST(GrowthFillingFactor, CompressionSwitchesOnAtThreeBERollOfTheReducedMassEnergy) {
+  // spec §4.2: E_imp = (1/2)(m/2) dv^2 against 3 b E_roll (b = 0.15), the switch a
+  // logistic in ln(E_imp / 3 b E_roll) over +-0.1 dex (spec §4.4): weight 1/2 at the
+  // threshold, 0.95 at 10^0.1 of it, 0.05 at 10^-0.1. A grain deep in Epstein drag (a =
+  // 1 um: x = 4a/(9 lambda) = 3.7e-7, lambda = 120.42 cm) with St = 1e-6 compresses with
+  // s_c = -1/8 (spec §4.3), so the slope is (1 - w) s_hs + w (-1/8), s_hs = -0.58:
+  //   w = 1/2:  (-0.58 - 0.125)/2          = -0.3525
+  //   w = 0.95: 0.05 (-0.58) + 0.95 (-0.125) = -0.14775
+  //   w = 0.05: 0.95 (-0.58) + 0.05 (-0.125) = -0.55725
+  // python: 3 b E_roll = 2.131834550635301e-9 erg (kThreshold), so with m = 1e-8 g the
+  // threshold speed is dv = sqrt(4 kThreshold / m) = 0.923435877716542 cm/s.
+  const LocalGas gas = mmsn_gas(5.0);
+  const Species sp = ice_species();
+  const GrowthOptions o = plain_options();
+  const double m = 1e-8, a = 1e-4, st = 1e-6;
+  const double dv_thr = 0.923435877716542;
+  EXPECT_LT(rel_err(0.25 * m * dv_thr * dv_thr, kThreshold), 1e-14);
+  struct Case {
+    double dex, slope;
+  };
+  for (const Case c : {Case{0.0, -0.3525}, Case{0.1, -0.14775}, Case{-0.1, -0.55725}}) {
+    const double dv = dv_thr * std::pow(10.0, 0.5 * c.dex);  // E_imp ~ dv^2
+    const double s = panoptic::physics::compression_slope(m, dv, a, st, gas, sp, o);
+    EXPECT_NEAR(s, c.slope, 1e-9) << "E_imp = 10^" << c.dex << " x 3 b E_roll";
+  }
+}
+
 TEST(GrowthFillingFactor, CompressionSlopeFollowsEpsteinDragLaw) {
   // With drag law "epstein" (GrowthOptions::drag = kEpstein, spec §9) the particle is in
   // Epstein drag at every size, so spec §4.3 gives s_c = -1/8 for St < 1 even where

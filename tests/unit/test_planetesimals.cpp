@@ -224,4 +224,33 @@ TEST(Planetesimals, D16TriggerAtItsSwitchMidpointsAndInSaturation) {
   }
 }
 
+// spec §7.2, zcrit: Sdot = zeta Sigma_d Omega where Z = Sigma_d/Sigma_g >= Z_crit(St),
+// for St >= St_si_min = 0.01, both thresholds smooth steps as above: Sdot = zeta Sigma_d
+// Omega step(Z/Z_crit; 1) step(St; 0.01). At St = 0.1: log10 Z_crit = 0.10 - 0.07 - 2.36
+// = -2.33 (Lim et al. 2025 eq. 15, as in ZcritAtHandWorkedStokesNumbers), so Z_crit =
+// 10^-2.33 = 4.677e-3, and the St step is 1 dex past its midpoint (1/(1 + 19^-10)).
+// Sigma_d is put at Z = Z_crit x (1, 10^0.1, 10^-0.1): expected factors by hand 1/2,
+// 0.95, 0.05 times the saturated St step. Tolerance 1e-12 as for d16.
+TEST(Planetesimals, ZcritTriggerAtItsSwitchMidpointAndFlanks) {
+  PlanetesimalOptions opt;
+  opt.coagulation = false;
+  opt.si = StreamingInstability::kZcrit;
+  opt.zeta = 0.01;  // zeta_zcrit default
+  const physics::LocalGas g = physics::mmsn_gas(5.0);
+  const double st = 0.1, z_crit = std::pow(10.0, -2.33);
+  const double up = std::pow(10.0, 0.1);
+  const double saturated = 1.0 / (1.0 + std::pow(19.0, -10.0));
+  struct Case {
+    double z_over_zcrit, factor;
+  };
+  for (const Case c : {Case{1.0, 0.5}, Case{up, 0.95}, Case{1.0 / up, 0.05}}) {
+    SCOPED_TRACE("Z/Z_crit = " + std::to_string(c.z_over_zcrit));
+    OneCell cell(st, opt);
+    const double sigma_d = c.z_over_zcrit * z_crit * g.sigma_g;
+    const auto [coag, si] = cell.rates(sigma_d, 1.0, 1e-3);
+    EXPECT_NEAR(si / (0.01 * sigma_d * g.omega_k * c.factor * saturated), 1.0, 1e-12);
+    EXPECT_EQ(coag, 0.0);
+  }
+}
+
 }  // namespace panoptic

@@ -69,6 +69,21 @@ TEST_F(RelVelMmsn5au, BrownianTwoMonomers) {
   EXPECT_LT(rel_err(dv_brownian(m0, m0, gas), 3.8749215063837723), 1e-9);
 }
 
+TEST_F(RelVelMmsn5au, PairPartnerHasTheMassOfEpsCubed) {
+  // spec §3 pair convention: the partner of (St, m) is (eps St, eps^3 m), eps = 0.5, so
+  // the Brownian term of dv_pair is 8 k_B T (m + m/8) / (pi m m/8) = 72 k_B T/(pi m).
+  // Two compact ice monomers (m = m0 = 5.864306286700947e-15 g, Epstein St = pi rho0 a0
+  // / (2 Sigma_g) = 1.4462853858025024e-07), where Brownian motion dominates: python,
+  // from the spec formulas of §1.3-1.6, §2, §3.1-3.5 with T = 280/sqrt(5) K:
+  //   dv_B^2 = 67.56757506285966 cm^2 s^-2; radial + azimuthal + vertical + turbulent
+  //   (tight regime, St_eta = 1.6048e-4) = 1.674e-4 cm^2 s^-2 (2.5e-6 of dv_B^2);
+  //   dv = sqrt(67.56757506285966 + 1.6740307650879707e-4) = 8.21996000391341 cm/s.
+  // A partner of mass eps m (m/2) would give sqrt(24 k_B T/(pi m)) = 4.7458 cm/s.
+  const double m0 = 5.864306286700947e-15;
+  const double st = 1.4462853858025024e-07;
+  EXPECT_LT(rel_err(dv_pair(st, m0, gas), 8.21996000391341), 1e-9);
+}
+
 TEST_F(RelVelMmsn5au, DriftComponentsLimits) {
   const double vw = gas.headwind();  // eta v_K = 53.9 m/s (spec §1.4)
   EXPECT_LT(rel_err(vw, 53.9e2), 0.001);
