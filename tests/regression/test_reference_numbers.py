@@ -805,6 +805,12 @@ def check_relative_velocity(ref):
     ref.cmp(s, A, "3.8749215063837723", math.sqrt(float(dv2_parts(1, 1, m0, m0, g)[0])), 1e-9,
             what="dv_B of two ice monomers")
 
+    A = "PairPartnerHasTheMassOfEpsCubed"
+    st0 = st_epstein(A0, RHO0, g)
+    ref.cmp(s, A, "1.4462853858025024e-07", st0, 1e-12, what="Epstein St of an ice monomer")
+    ref.cmp(s, A, "8.21996000391341", float(dv_pair(st0, m0, g)), 1e-9,
+            what="dv of a monomer against its pair partner (eps St, eps^3 m)")
+
     A = "DriftComponentsLimits"
     ref.cmp(s, A, "53.9e2", g.vw, 0.001, what="eta v_K (spec §1.4)")
     t_drift = 5 * AU / (2 * 1.0 * g.vw / 2.0) / YR
@@ -912,6 +918,11 @@ def check_growth(ref):
     thr = 3 * 0.15 * e_roll  # spec §4.2, b = 0.15
     st_mono = stokes(m0, 1.0, g)
     sigma_d = 0.01 * g.sigma  # Z = 0.01 (spec §1.7): kSigmaD
+
+    A = "CompressionSwitchesOnAtThreeBERollOfTheReducedMassEnergy"
+    ref.cmp(s, A, "2.131834550635301e-9", thr, 1e-12, what="3 b E_roll of ice (comment)")
+    ref.cmp(s, A, "0.923435877716542", math.sqrt(4 * thr / 1e-8), 1e-12,
+            what="dv at E_imp = m dv^2/4 = 3 b E_roll, m = 1e-8 g")
 
     A = "constexpr double kM0"
     ref.cmp(s, A, "5.864306286700947e-15", m0, 1e-12, what="kM0")
