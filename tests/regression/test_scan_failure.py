@@ -5,6 +5,7 @@ the fourth run completes, and the summary records each failure with its error. A
 runs the failed ones again and skips the complete one. --task I runs one entry (job
 arrays) and the command without --task then runs what is missing. A bad axis key or
 value is refused before anything is written (exit 2, naming the key)."""
+import csv
 import os
 import shutil
 import stat
@@ -62,6 +63,22 @@ def main():
         rows = f.read().splitlines()
     c.check(len(rows) == 5 and rows[2].split(",")[4] == "failed" and "max_steps" in rows[2],
             "summary.csv: a header and 4 rows; run 1 failed with its error")
+    # every column of summary.csv under its own header: the numbers of the completed run
+    # against summary.h5 (wall_s, steps and each outcome; the status and worker as text)
+    with open(f"{out}/summary.csv", newline="") as f:
+        recs = list(csv.DictReader(f))
+    r0 = recs[0]
+    same = (r0["status"] == "completed" and r0["exit_code"] == "0" and
+            r0["worker"].startswith("local/") and
+            float(r0["wall_s"]) == float(s["runs/wall_s"][0]) and
+            float(r0["steps"]) == float(s["runs/steps"][0]) and s["runs/steps"][0] > 0 and
+            s["runs/wall_s"][0] != s["runs/steps"][0])
+    outs = [k for k in s if k.startswith("outcome/")]
+    same = same and len(outs) >= 9 and all(
+        np.isclose(float(r0[k[len("outcome/"):]]), s[k][0], rtol=1e-9, equal_nan=True)
+        for k in outs)
+    c.check(same, f"summary.csv run 0 = summary.h5 under every header ({len(outs)} outcomes, "
+            f"wall_s {r0['wall_s']}, steps {r0['steps']})")
     # rerun: the complete run is skipped, the failed ones run again
     rid = run_id(f"{out}/runs/run_00000.h5")
     p = scan(args.exe, sf, out, "--run-exe", wrapper, expect=3)

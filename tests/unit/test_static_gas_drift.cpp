@@ -1,0 +1,86 @@
+// The drift speed on the faces with static gas whose profile is not a power law (as the
+// LBP disk of params/compact_fragmentation.toml, whose Sigma_g is held fixed): eta must
+// come from the pressure gradient between the two centres either side of each face (spec
+// §1.4, §6.1), the inner face taking that of the first interior face. On a power-law
+// disk dlnP/dlnr is the same everywhere, so only such a profile tells the faces apart.
+//
+// Set-up (as tests/unit/test_transport_flux.cpp): 3 log-spaced cells from 3 to 9 au
+// (faces 3, 4.3267, 6.2403, 9 au), MMSN temperature T = 280 (r/au)^-1/2 K, mu = 2.34,
+// M = 1 M_sun, St = (0.05, 0.2, 0.8) per cell (faces: 0.05, 0.1, 0.4), static gas
+// Sigma_g = 1700 (r_c/au)^-1.5 x (1, 1.3, 0.7) g cm^-2, drift only.
+// Worked out by hand (constants of spec §1.1):
+//   P = Sigma_g c_s Omega/sqrt(2 pi) with c_s Omega ∝ r^-1/4 r^-3/2, so between centres a
+//   and b, ln(r_c,b/r_c,a) = ln(3)/3 = 0.3662041:
+//     dlnP/dlnr = -1.5 - 1.75 + ln(x_b/x_a)/0.3662041,
+//     cells 0-1: ln 1.3 = 0.2623643 -> -3.25 + 0.7164385 = -2.5335615 (faces 0 and 1)
+//     cells 1-2: ln(0.7/1.3) = -0.6190392 -> -3.25 - 1.6904200 = -4.9404200 (face 2)
+//   eta v_K = -1/2 (H/r)^2 v_K dlnP/dlnr, (H/r)^2 v_K = c_s^2/v_K = k T/(mu m_H) /
+//   sqrt(G M/r), the same on every face here (both ∝ r^-1/2): at 3 au T = 161.658 K,
+//   c_s^2 = 5.69975e9 cm^2 s^-2, v_K = 1.719824e6 cm/s, c_s^2/v_K = 3314.14 cm/s, so
+//     eta v_K = 4198.28 cm/s (faces 0, 1) and 8186.63 cm/s (face 2)
+//   (the same numbers as the mpmath values of FaceVelocityWithMovingGas, whose gas has
+//   this profile), and v = -2 St eta v_K/(1 + St^2):
+//     face 0: -2 (0.05) 4198.28/1.0025 = -418.781 cm/s
+//     face 1: -2 (0.1)  4198.28/1.01   = -831.343 cm/s
+//     face 2: -2 (0.4)  8186.63/1.16   = -5645.95 cm/s
+// The test computes these from the same formulas in double precision (tolerance 1e-10)
+// and checks them against the rounded hand values to 1e-5.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "disk/gas_column.hpp"
+#include "disk/gas_disk.hpp"
+#include "physics/dust_transport.hpp"
+#include "physics/stokes_model.hpp"
+#include "src/grid.hpp"
+#include "src/state_layout.hpp"
+#include "src/units.hpp"
+
+namespace panoptic {
+namespace {
+
+TEST(DustTransportFlux, FaceVelocityWithStaticGasThatIsNotAPowerLaw) {
+  // spec §1.1 constants
+  const double au = 1.496e13, G = 6.674e-8, m_sun = 1.989e33, k_b = 1.3807e-16,
+               m_h = 1.6735e-24;
+  ThermalParams th;  // T_1au = 280 K, q = 1/2, mu = 2.34, alpha = 1e-3 (spec §10.1)
+  const PowerLawDisk disk({units::kMsun, units::kLsun}, th, 1700.0, 1.5);
+  const Grid grid(3.0 * au, 9.0 * au, 3);
+  const double x[] = {1.0, 1.3, 0.7};
+  GasColumn gas;
+  for (int i = 0; i < 3; ++i)
+    gas.static_sigma.push_back(1700.0 * std::pow(grid.r_c(i) / au, -1.5) * x[i]);
+  StateLayout layout(3);
+  PrescribedStokes stokes({0.05, 0.2, 0.8});
+  DustTransportOptions opt;
+  opt.diffusion = false;
+  DustTransport transport(layout, grid, disk, gas, nullptr, stokes, opt, 1.0, 1.0);
+  layout.freeze();
+  std::vector<double> y(layout.size(), 0.0);
+  for (int i = 0; i < 3; ++i) y[layout.index(i, transport.sigma_slot())] = 1.0;
+  const auto v = transport.face_velocity(y);
+  ASSERT_EQ(v.size(), 4u);
+
+  const double dlnr = std::log(3.0) / 3.0;
+  const double dlnp01 = -3.25 + std::log(1.3) / dlnr;
+  const double dlnp12 = -3.25 + std::log(0.7 / 1.3) / dlnr;
+  const double st_face[] = {0.05, std::sqrt(0.05 * 0.2), std::sqrt(0.2 * 0.8)};
+  const double dlnp_face[] = {dlnp01, dlnp01, dlnp12};
+  const double hand[] = {-418.781, -831.343, -5645.95};
+  for (int f = 0; f < 3; ++f) {
+    const double r = grid.r_f(f);
+    const double cs2 = k_b * 280.0 / std::sqrt(r / au) / (2.34 * m_h);
+    const double vk = std::sqrt(G * m_sun / r);
+    const double eta_vk = -0.5 * cs2 / vk * dlnp_face[f];
+    const double st = st_face[f];
+    const double want = -2.0 * st * eta_vk / (1.0 + st * st);
+    EXPECT_NEAR(v[f] / want, 1.0, 1e-10) << "face " << f;
+    EXPECT_NEAR(v[f] / hand[f], 1.0, 1e-5) << "face " << f;
+  }
+  EXPECT_EQ(v[3], 0.0);  // closed outer face
+}
+
+}  // namespace
+}  // namespace panoptic
