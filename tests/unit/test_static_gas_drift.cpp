@@ -82,5 +82,69 @@ TEST(DustTransportFlux, FaceVelocityWithStaticGasThatIsNotAPowerLaw) {
   EXPECT_EQ(v[3], 0.0);  // closed outer face
 }
 
+// The limited (van Leer) drift flux on every face, inward and outward, against the MUSCL
+// formula worked out from the state (README, Work-precision: `transport.advection =
+// "van_leer"`; van Leer 1977, LeVeque 2002 §6.9). 5 log-spaced cells from 3 to 9 au
+// (d ln r = ln(3)/5 = 0.2197225), St = 0.1 everywhere, MMSN temperature, static gas
+// Sigma_g = 1700 (r_c/au)^-1.5 x (1, 1, 3, 3, 1): dlnP/dlnr = -3.25 +
+// ln(x_b/x_a)/0.2197225 between centres is -3.25 (faces 0, 1, 3: inward), +1.7802 (face
+// 2: outward, the pressure rising) and -8.2802 (face 4: inward). Sigma_d = c_i / (r_c/au)
+// with c = (1, 1.5, 2.5, 4.5, 8.5), so q = 2 pi r_c Sigma_d = 2 pi au c rises with r and
+// every limited face has a b > 0 with a != b. Upwind (u), far (w) and downwind (d) cells:
+//   face 1 (inward):  u = 1, w = 2, d = 0: limited
+//   face 2 (outward): u = 1, w = 0, d = 2: limited (the far cell is cell 0)
+//   face 3 (inward):  u = 3, w = 4, d = 2: limited
+//   face 4 (inward):  u = 4, w = 5 off the grid: first order
+//   face 0 (r_in, inward, the slope of face 1): first order, 2 pi r_c(0) v Sigma_d,0
+// flow = v (q_u + a b / (a + b)), a = q_u - q_w, b = q_d - q_u (half the van Leer slope
+// 2ab/(a+b)). By hand in units of 2 pi au v: face 1: a = -1, b = -0.5: 1.5 + 0.5/(-1.5) =
+// 1.16667; face 2: a = 0.5, b = 1: 1.5 + 0.5/1.5 = 1.83333; face 3: a = -4, b = -2: 4.5 +
+// 8/(-6) = 3.16667.
+TEST(DustTransportFlux, VanLeerFluxInwardAndOutward) {
+  const double au = 1.496e13, G = 6.674e-8, m_sun = 1.989e33, k_b = 1.3807e-16,
+               m_h = 1.6735e-24, pi = 3.14159265358979323846;
+  ThermalParams th;
+  const PowerLawDisk disk({units::kMsun, units::kLsun}, th, 1700.0, 1.5);
+  const int n = 5;
+  const Grid grid(3.0 * au, 9.0 * au, n);
+  const double x[] = {1.0, 1.0, 3.0, 3.0, 1.0}, c[] = {1.0, 1.5, 2.5, 4.5, 8.5};
+  GasColumn gas;
+  for (int i = 0; i < n; ++i)
+    gas.static_sigma.push_back(1700.0 * std::pow(grid.r_c(i) / au, -1.5) * x[i]);
+  StateLayout layout(n);
+  PrescribedStokes stokes(std::vector<double>(n, 0.1));
+  DustTransportOptions opt;
+  opt.diffusion = false;
+  opt.limited = true;
+  DustTransport transport(layout, grid, disk, gas, nullptr, stokes, opt, 1.0, 1.0);
+  layout.freeze();
+  std::vector<double> y(layout.size(), 0.0);
+  for (int i = 0; i < n; ++i)
+    y[layout.index(i, transport.sigma_slot())] = c[i] / (grid.r_c(i) / au);
+  const auto flow = transport.mass_flow(y);
+  ASSERT_EQ(flow.size(), std::size_t(n + 1));
+
+  const double dlnr = std::log(3.0) / n;
+  const double dlnp[] = {-3.25, -3.25, -3.25 + std::log(3.0) / dlnr, -3.25,
+                         -3.25 - std::log(3.0) / dlnr};  // faces 0..4
+  const double q[] = {c[0], c[1], c[2], c[3], c[4]};     // q / (2 pi au)
+  const auto muscl = [&](int u, int w, int d) {
+    const double a = q[u] - q[w], b = q[d] - q[u];
+    return q[u] + a * b / (a + b);
+  };
+  const double face_q[] = {q[0], muscl(1, 2, 0), muscl(1, 0, 2), muscl(3, 4, 2), q[4]};
+  const double hand_q[] = {1.0, 1.1666667, 1.8333333, 3.1666667, 8.5};
+  for (int f = 0; f < n; ++f) {
+    const double r = grid.r_f(f);
+    const double cs2 = k_b * 280.0 / std::sqrt(r / au) / (2.34 * m_h);
+    const double vk = std::sqrt(G * m_sun / r);
+    const double v = -2.0 * 0.1 * (-0.5 * cs2 / vk * dlnp[f]) / 1.01;
+    EXPECT_EQ(v > 0.0, f == 2) << "face " << f;
+    EXPECT_NEAR(face_q[f] / hand_q[f], 1.0, 1e-7) << "face " << f;
+    EXPECT_NEAR(flow[f] / (2.0 * pi * au * v * face_q[f]), 1.0, 1e-10) << "face " << f;
+  }
+  EXPECT_EQ(flow[n], 0.0);  // closed outer face
+}
+
 }  // namespace
 }  // namespace panoptic
