@@ -167,8 +167,7 @@ std::vector<KeySpec> make_keys() {
       // Reynolds number of Ormel & Cuzzi's velocities falls to ~1 there), and the dust
       // settles into ever thinner layers: the fiducial scene to 1 Myr took 185 s at
       // 1e-7, 39 s at 1e-8 and did not finish in 20 min at 1e-10; at 1e-50 it did not
-      // reach 100 yr
-      // in 5 min, and at 1e-70 CVODE failed at t = 0.
+      // reach 100 yr in 5 min, and at 1e-70 CVODE failed at t = 0.
       real("disk.alpha", "1e-3", "",
            "Shakura-Sunyaev alpha, D_g = alpha c_s H (§1.5); below 1e-8 molecular "
            "viscosity would dominate",

@@ -41,10 +41,22 @@
 namespace panoptic {
 namespace {
 
+// spec §1.1 constants
+constexpr double kAu = 1.496e13, kG = 6.674e-8, kMsunG = 1.989e33, kBoltz = 1.3807e-16,
+                 kMassH = 1.6735e-24;
+
+//! The drift speed on a face at radius r [cm] by hand: v = -2 St eta v_K/(1 + St^2),
+//! eta v_K = -1/2 (c_s^2/v_K) dlnP/dlnr, MMSN temperature T = 280 (r/au)^-1/2 K,
+//! mu = 2.34, M = 1 M_sun [cm s^-1].
+double drift_speed_by_hand(double r, double st, double dlnp_dlnr) {
+  const double cs2 = kBoltz * 280.0 / std::sqrt(r / kAu) / (2.34 * kMassH);
+  const double vk = std::sqrt(kG * kMsunG / r);
+  const double eta_vk = -0.5 * cs2 / vk * dlnp_dlnr;
+  return -2.0 * st * eta_vk / (1.0 + st * st);
+}
+
 TEST(DustTransportFlux, FaceVelocityWithStaticGasThatIsNotAPowerLaw) {
-  // spec §1.1 constants
-  const double au = 1.496e13, G = 6.674e-8, m_sun = 1.989e33, k_b = 1.3807e-16,
-               m_h = 1.6735e-24;
+  const double au = kAu;
   ThermalParams th;  // T_1au = 280 K, q = 1/2, mu = 2.34, alpha = 1e-3 (spec §10.1)
   const PowerLawDisk disk({units::kMsun, units::kLsun}, th, 1700.0, 1.5);
   const Grid grid(3.0 * au, 9.0 * au, 3);
@@ -70,12 +82,7 @@ TEST(DustTransportFlux, FaceVelocityWithStaticGasThatIsNotAPowerLaw) {
   const double dlnp_face[] = {dlnp01, dlnp01, dlnp12};
   const double hand[] = {-418.781, -831.343, -5645.95};
   for (int f = 0; f < 3; ++f) {
-    const double r = grid.r_f(f);
-    const double cs2 = k_b * 280.0 / std::sqrt(r / au) / (2.34 * m_h);
-    const double vk = std::sqrt(G * m_sun / r);
-    const double eta_vk = -0.5 * cs2 / vk * dlnp_face[f];
-    const double st = st_face[f];
-    const double want = -2.0 * st * eta_vk / (1.0 + st * st);
+    const double want = drift_speed_by_hand(grid.r_f(f), st_face[f], dlnp_face[f]);
     EXPECT_NEAR(v[f] / want, 1.0, 1e-10) << "face " << f;
     EXPECT_NEAR(v[f] / hand[f], 1.0, 1e-5) << "face " << f;
   }
@@ -101,8 +108,7 @@ TEST(DustTransportFlux, FaceVelocityWithStaticGasThatIsNotAPowerLaw) {
 // 1.16667; face 2: a = 0.5, b = 1: 1.5 + 0.5/1.5 = 1.83333; face 3: a = -4, b = -2: 4.5 +
 // 8/(-6) = 3.16667.
 TEST(DustTransportFlux, VanLeerFluxInwardAndOutward) {
-  const double au = 1.496e13, G = 6.674e-8, m_sun = 1.989e33, k_b = 1.3807e-16,
-               m_h = 1.6735e-24, pi = 3.14159265358979323846;
+  const double au = kAu, pi = 3.14159265358979323846;
   ThermalParams th;
   const PowerLawDisk disk({units::kMsun, units::kLsun}, th, 1700.0, 1.5);
   const int n = 5;
@@ -135,10 +141,7 @@ TEST(DustTransportFlux, VanLeerFluxInwardAndOutward) {
   const double face_q[] = {q[0], muscl(1, 2, 0), muscl(1, 0, 2), muscl(3, 4, 2), q[4]};
   const double hand_q[] = {1.0, 1.1666667, 1.8333333, 3.1666667, 8.5};
   for (int f = 0; f < n; ++f) {
-    const double r = grid.r_f(f);
-    const double cs2 = k_b * 280.0 / std::sqrt(r / au) / (2.34 * m_h);
-    const double vk = std::sqrt(G * m_sun / r);
-    const double v = -2.0 * 0.1 * (-0.5 * cs2 / vk * dlnp[f]) / 1.01;
+    const double v = drift_speed_by_hand(grid.r_f(f), 0.1, dlnp[f]);
     EXPECT_EQ(v > 0.0, f == 2) << "face " << f;
     EXPECT_NEAR(face_q[f] / hand_q[f], 1.0, 1e-7) << "face " << f;
     EXPECT_NEAR(flow[f] / (2.0 * pi * au * v * face_q[f]), 1.0, 1e-10) << "face " << f;
