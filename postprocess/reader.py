@@ -261,7 +261,7 @@ def load_run(path):
     /timeseries likewise (its writer appends `time` last, so the rows kept are those
     that have a time). Missing /timeseries, /pebbles or /summary give empty dicts.
     """
-    with _open_read_only(path) as f:
+    with open_output(path) as f:
         _refuse_other_files(f, path)
         units, descriptions = {}, {}
         f.visititems(lambda name, obj: _collect_units(units, descriptions, name, obj))
@@ -324,8 +324,10 @@ def _name_list(f, group, attr):
     return [s for s in raw.split(";") if s]
 
 
-def _open_read_only(path):
-    """h5py.File(path, 'r'), with a hint when a killed writer left the file flagged."""
+def open_output(path):
+    """A run's output, read-only: h5py.File(path, 'r'); for a run's output whose writer still runs or was killed
+    (panoptic writes its output in HDF5's SWMR mode, and HDF5 refuses a plain open of
+    such a file), the file opened for SWMR reading: every row flushed before, consistent."""
     import os
     if os.path.isdir(path):
         raise IsADirectoryError(f"{path} is a directory; give a run's .h5 file (a scan's "
@@ -333,10 +335,13 @@ def _open_read_only(path):
     try:
         return h5py.File(path, "r")
     except OSError as err:
-        if "consistency flags" in str(err):
+        if "consistency flags" not in str(err):
+            raise
+        try:
+            return h5py.File(path, "r", swmr=True)
+        except OSError:
             raise OSError(f"{path}: the writer did not close the file; run "
                           f"`h5clear -s {path}` (on a copy, if you prefer) and retry") from err
-        raise
 
 
 def _collect_units(units, descriptions, name, obj):

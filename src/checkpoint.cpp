@@ -76,13 +76,14 @@ SolverStats get_stats(hid_t group) {
 
 void flush(hid_t file, const fs::path& path) {
   if (H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
-    throw IoError(path.string() + ": writing the checkpoint failed; is the disk full?");
+    throw IoError(path.string() + ": writing the checkpoint failed" +
+                  write_failure_hint(path, errno));
 }
 
 // Everything but the completeness flag, then the flag, each followed by a flush: a file
 // cut anywhere before the end has no flag.
 void write_file(const fs::path& path, const Checkpoint& chk) {
-  h5::Handle f = h5::create_file(path.string(), /*checksummed_metadata=*/true);
+  h5::Handle f = h5::create_file(path.string());
   h5::set_attr(f.get(), "format", std::string(kFormat));
   h5::write_vector(f.get(), "y", chk.y, "cgs",
                    "raw CVODE state at t, in the order of layout_signature");

@@ -75,4 +75,25 @@ void refuse_output_is_input(const std::filesystem::path& output,
                       "-o");
 }
 
+std::string write_failure_hint(const std::filesystem::path& path, int err) {
+  const std::filesystem::path dir =
+      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (::access(dir.c_str(), W_OK) != 0)
+    return " (" + dir.string() + ": " + std::strerror(errno) +
+           "); write the output elsewhere with -o";
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
+    return " (" + std::string(std::strerror(errno)) +
+           "); write the output elsewhere with -o";
+  if (err == EDQUOT)
+    return " (" + std::string(std::strerror(err)) +
+           ": the disk quota is full); make room or write elsewhere with -o";
+  const auto space = std::filesystem::space(dir, ec);
+  if (err == ENOSPC || (!ec && space.available < (std::uintmax_t{1} << 20)))
+    return " (the file system of " + dir.string() + " has " +
+           (ec ? std::string("no space") : std::to_string(space.available) + " bytes") +
+           " free: the disk is full); make room or write elsewhere with -o";
+  return "";
+}
+
 }  // namespace panoptic

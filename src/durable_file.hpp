@@ -25,5 +25,9 @@ void refuse_to_replace(const std::filesystem::path& output, bool overwrite);
 //! `what` names it ("the scene the run reads", "the run's checkpoint").
 void refuse_output_is_input(const std::filesystem::path& output,
                             const std::filesystem::path& input, const std::string& what);
+//! Why writing `path` may have failed, as " (reason); fix" or "": the directory or file
+//! not writable (errno's text), `err` (the errno of the failed write) a full quota or
+//! disk, or less than 1 MiB free on its file system. For the output and checkpoints.
+std::string write_failure_hint(const std::filesystem::path& path, int err);
 
 }  // namespace panoptic

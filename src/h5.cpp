@@ -121,18 +121,22 @@ void Handle::reset() {
 void quiet_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 namespace {
-Handle create(const std::string& path, bool checksummed_metadata, bool in_memory) {
+// The HDF5 1.10 format as the lowest, for what a file gets: checksummed metadata, SWMR.
+Handle latest_format_access(const std::string& path) {
   Handle fapl(ok(H5Pcreate(H5P_FILE_ACCESS), "property list"), H5Pclose);
+  ok(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
+     "setting the format of", path);
+  return fapl;
+}
+
+Handle create(const std::string& path, bool in_memory) {
+  Handle fapl = latest_format_access(path);
   if (in_memory)
     ok(H5Pset_fapl_core(fapl.get(), 64 << 10, true), "setting the core driver of", path);
   // Root attributes in dense storage (the 1.8 format at least): compact storage caps an
   // attribute at 64 KiB, and config_toml (the resolved scene) or a scan's manifest can
   // be longer (an output_times list of 6 000 times: "creating attribute config_toml
   // failed", a stub file left behind).
-  ok(H5Pset_libver_bounds(fapl.get(),
-                          checksummed_metadata ? H5F_LIBVER_LATEST : H5F_LIBVER_V18,
-                          H5F_LIBVER_LATEST),
-     "setting the format of", path);
   Handle fcpl(ok(H5Pcreate(H5P_FILE_CREATE), "property list"), H5Pclose);
   ok(H5Pset_attr_phase_change(fcpl.get(), 0, 0), "setting the attribute storage of",
      path);
@@ -142,13 +146,9 @@ Handle create(const std::string& path, bool checksummed_metadata, bool in_memory
 }
 }  // namespace
 
-Handle create_file(const std::string& path, bool checksummed_metadata) {
-  return create(path, checksummed_metadata, false);
-}
+Handle create_file(const std::string& path) { return create(path, false); }
 
-Handle create_file_in_memory(const std::string& path) {
-  return create(path, false, true);
-}
+Handle create_file_in_memory(const std::string& path) { return create(path, true); }
 
 void close_file(Handle& f, const std::string& path) {
   if (!f.valid()) return;
@@ -157,9 +157,20 @@ void close_file(Handle& f, const std::string& path) {
 }
 
 Handle open_file(const std::string& path, bool writable) {
-  return {ok(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT),
-             "opening file " + path),
-          H5Fclose};
+  if (writable)
+    return {ok(H5Fopen(path.c_str(), H5F_ACC_RDWR, latest_format_access(path).get()),
+               "opening file " + path),
+            H5Fclose};
+  hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  // HDF5 refuses a plain open of a file whose SWMR writer runs or was killed
+  if (id < 0) id = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);
+  return {ok(id, "opening file " + path), H5Fclose};
+}
+
+bool start_swmr_write(hid_t f) {
+  unsigned intent = 0;
+  if (H5Fget_intent(f, &intent) >= 0 && (intent & H5F_ACC_SWMR_WRITE) != 0) return true;
+  return H5Fstart_swmr_write(f) >= 0;
 }
 
 Handle create_group(hid_t parent, const std::string& name) {

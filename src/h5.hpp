@@ -38,17 +38,28 @@ class Handle {
   Closer closer_ = nullptr;
 };
 
-//! Creates (truncating) or opens an HDF5 file. `checksummed_metadata` selects the
-//! HDF5 1.10 format, whose metadata carries checksums, so that a damaged file is
-//! reported as such instead of read as garbage (checkpoints).
-Handle create_file(const std::string& path, bool checksummed_metadata = false);
+//! Creates (truncating) an HDF5 file in the HDF5 1.10 format: its metadata carries
+//! checksums, so that a damaged file is reported as such instead of read as garbage
+//! (checkpoints), and it can be written in SWMR mode (start_swmr_write; run outputs).
+Handle create_file(const std::string& path);
 //! The same, built in memory and written to `path` only when flushed and closed (the
 //! core driver with a backing store): a write that fails there (disk full, quota) is an
 //! error of the flush, and does not leave HDF5 with a half-written file that it fails
 //! to close and crashes on at exit (seen with sec2 and HDF5 1.10.8). For files that
 //! fit in memory (a scan's summary).
 Handle create_file_in_memory(const std::string& path);
+//! Opens an HDF5 file, read-write with the 1.10 format for what it adds (so that
+//! start_swmr_write can follow). Read-only, a file that HDF5 marks as open by a SWMR
+//! writer (a run's output while it runs, or after the run was killed) is opened for
+//! SWMR reading: what the writer last flushed, consistent.
 Handle open_file(const std::string& path, bool writable);
+//! Switches file `f` (opened read-write or created by this process) to SWMR writing
+//! (HDF5's single-writer/multiple-reader mode): from here on HDF5 writes its metadata in
+//! an order that keeps the file on disk consistent at every write, so a process killed
+//! at any moment, in the middle of a flush included, leaves a file that opens, holding
+//! every row flushed before (regression.test_kill_during_flush). False when HDF5
+//! refuses (a file in the 1.8 format, which HDF5 cannot write in that mode).
+bool start_swmr_write(hid_t f);
 //! Closes file `f` and throws IoError naming `path` when HDF5 fails to (its metadata,
 //! cached until the close, could not be written: the file is incomplete). ~Handle
 //! ignores that failure; a file that must be whole (a checkpoint) is closed with this.

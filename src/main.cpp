@@ -335,6 +335,9 @@ int run(const RunArgs& a) {
                         out.root_attr("restarts") + "; lost rows (now NaN): " + lost);
     }
   }
+  // Every object is in the file: rows only from here on, written in SWMR mode.
+  if (const std::string why = out.start_appending(); !why.empty())
+    std::fprintf(stderr, "panoptic: warning: %s\n", why.c_str());
   const auto snapshot = [&](double t, std::span<const double> y) {
     auto fields = sim.snapshot_fields(y);
     diag.add_snapshot_fields(fields);
@@ -432,6 +435,7 @@ int run(const RunArgs& a) {
   const double wall = wall0 + seconds_since(start);
   const SolverStats s = cvode.stats();
   out.write_solver(s, wall, status);
+  out.close();
   std::printf("%s at t = %.4g yr: %zu snapshots in %s\n",
               code == 0 ? "completed" : "stopped", cvode.time() / units::kYr,
               out.n_snapshots(), out.path().c_str());

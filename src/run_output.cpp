@@ -89,35 +89,11 @@ std::string rebuild(const std::filesystem::path& path) {
          ": the file is damaged); continued in place";
 }
 
-// Why writing `path` may have failed, as " (reason); fix" or "": the directory or file
-// not writable (errno's text), `err` (the errno of the failed write) a full quota or
-// disk, or less than 1 MiB free on its file system.
-std::string write_failure_hint(const std::filesystem::path& path, int err) {
-  const std::filesystem::path dir =
-      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  if (::access(dir.c_str(), W_OK) != 0)
-    return " (" + dir.string() + ": " + std::strerror(errno) +
-           "); write the output elsewhere with -o";
-  std::error_code ec;
-  if (std::filesystem::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
-    return " (" + std::string(std::strerror(errno)) +
-           "); write the output elsewhere with -o";
-  if (err == EDQUOT)
-    return " (" + std::string(std::strerror(err)) +
-           ": the disk quota is full); make room or write elsewhere with -o";
-  const auto space = std::filesystem::space(dir, ec);
-  if (err == ENOSPC || (!ec && space.available < (std::uintmax_t{1} << 20)))
-    return " (the file system of " + dir.string() + " has " +
-           (ec ? std::string("no space") : std::to_string(space.available) + " bytes") +
-           " free: the disk is full); make room or write elsewhere with -o";
-  return "";
-}
-
 }  // namespace
 
 RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
                      const RunMetadata& meta)
-    : path_(path) {
+    : path_(path), staging_(path.string() + ".setup.tmp"), overwrite_(overwrite) {
   h5::quiet_errors();
   refuse_to_replace(path, overwrite);
   std::error_code ec;
@@ -127,8 +103,12 @@ RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
       throw IoError(path.parent_path().string() + ": cannot create directory (" +
                     ec.message() + ")");
   }
+  // Set up under a name of its own and renamed to `path` by start_appending: a run
+  // killed while HDF5 writes the set-up (not yet in SWMR mode) leaves no unreadable
+  // stub at `path`, and the file that --overwrite replaces stays until then.
+  std::filesystem::remove(staging_, ec);  // left by a run killed during its set-up
   try {
-    file_ = h5::create_file(path.string());
+    file_ = h5::create_file(staging_.string());
     run_id_ = new_run_id();
     h5::set_attr(file_.get(), "run_id", run_id_);
     h5::set_attr(file_.get(), "scene", meta.scene);
@@ -142,14 +122,9 @@ RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
   } catch (const IoError& e) {
     const int err = errno;  // of the failed write, if it was one
     const std::string hint = write_failure_hint(path, err);
-    // a stub that this constructor created holds no snapshot and may not read: removed
-    // (the file it replaced is gone already, truncated by the create). If the create
-    // itself failed, the file at `path` is not ours to remove.
-    const bool created = file_.valid();
+    // the stub holds no snapshot: removed; the file at `path` was not touched
     file_.reset();
-    if (created &&
-        std::filesystem::is_regular_file(std::filesystem::symlink_status(path, ec)))
-      std::filesystem::remove(path, ec);
+    std::filesystem::remove(staging_, ec);
     if (std::string_view(e.what()).starts_with(path.string())) throw;
     throw IoError(path.string() + ": " + e.what() + hint);
   }
@@ -269,6 +244,7 @@ std::vector<double> RunOutput::times_yr() const {
 }
 
 void RunOutput::set_root_attr(const std::string& name, const std::string& value) {
+  leave_swmr();
   h5::set_attr(file_.get(), name, value);
   flush();
 }
@@ -279,10 +255,23 @@ std::string RunOutput::root_attr(const std::string& name) const {
 }
 
 RunOutput::~RunOutput() {
-  if (file_.valid()) H5Fflush(file_.get(), H5F_SCOPE_GLOBAL);
+  if (!file_.valid()) return;
+  std::error_code ec;
+  if (!staging_.empty()) {  // set up but never started: a stub, not an output
+    file_.reset();
+    std::filesystem::remove(staging_, ec);
+    return;
+  }
+  try {
+    close();
+  } catch (const IoError& e) {  // the output keeps every row; its closing writes are lost
+    std::fprintf(stderr, "panoptic: warning: %s\n", e.what());
+    if (!finishing_.empty()) std::filesystem::remove(finishing_, ec);
+  }
 }
 
 void RunOutput::ensure_group(const std::string& group) {
+  leave_swmr();  // every caller creates an object or an attribute
   if (!h5::exists(file_.get(), group)) h5::create_group(file_.get(), group);
 }
 
@@ -328,6 +317,7 @@ void RunOutput::append_series(const std::string& group, const std::string& name,
 
 void RunOutput::add_field(const std::string& name, std::size_t width,
                           const std::string& units, const std::string& description) {
+  leave_swmr();
   h5::Handle g = h5::open_group(file_.get(), "snapshots");
   h5::create_stack(g.get(), name, width, units, description);
   fields_[name] = width;
@@ -366,6 +356,60 @@ void RunOutput::write_solver(const SolverStats& s, double wall_s,
   h5::set_attr(g.get(), "wall_s", wall_s);
   h5::set_attr(g.get(), "status", status);
   flush();
+}
+
+std::string RunOutput::start_appending() {
+  flush();
+  swmr_ = h5::start_swmr_write(file_.get());
+  if (!staging_.empty()) {  // a new output: in place now, consistent from here on
+    flush();
+    refuse_to_replace(path_, overwrite_);  // nothing has appeared there since
+    rename_or_throw(staging_, path_);
+    staging_.clear();
+  }
+  if (swmr_) return "";
+  return "HDF5 cannot write " + path_.string() +
+         " in SWMR mode (a file in the HDF5 1.8 format, from an older panoptic, that the "
+         "restart could not rebuild): a kill in the middle of a flush can leave it "
+         "unreadable";
+}
+
+// HDF5 1.10 does not support creating or deleting objects and attributes in SWMR mode
+// (a run's closing /solver attributes made H5Fflush fail: "slist not empty"). The file
+// is closed, which ends the mode and leaves it whole, and the last writes go to a copy
+// of it that replaces it once closed (close): a plain read-write file is marked open
+// by HDF5 until closed, and a kill would leave it unreadable (regression.
+// test_kill_during_flush: 38 of 303 kill points, in a run's closing writes) and its
+// metadata half written; killed now, the output is the closed file, every row in it.
+void RunOutput::leave_swmr() {
+  if (!swmr_) return;
+  flush();
+  h5::close_file(file_, path_.string());
+  swmr_ = false;
+  finishing_ = path_.string() + ".finish.tmp";
+  std::error_code ec;
+  std::filesystem::remove(finishing_, ec);  // left by a run killed in its closing writes
+  try {
+    h5::copy_file(path_.string(), finishing_.string());
+    file_ = h5::open_file(finishing_.string(), true);
+  } catch (const IoError& e) {
+    const int err = errno;  // of the failed write, if it was one
+    std::filesystem::remove(finishing_, ec);
+    throw IoError(path_.string() + ": the copy that its closing writes go to (" +
+                  finishing_.string() + ") could not be written (" + e.what() + ")" +
+                  write_failure_hint(finishing_, err) + "; " + path_.string() +
+                  " holds every snapshot, without /summary and /solver");
+  }
+}
+
+void RunOutput::close() {
+  if (!file_.valid()) return;
+  flush();
+  h5::close_file(file_, finishing_.empty() ? path_.string() : finishing_.string());
+  if (finishing_.empty()) return;
+  fsync_path(finishing_, false);
+  rename_or_throw(finishing_, path_);
+  finishing_.clear();
 }
 
 void RunOutput::flush() {

@@ -1,8 +1,9 @@
 #pragma once
 //! The HDF5 file of one run (style guide "Output"): root attributes (config_toml,
 //! git_sha, version, scene), /grid, /disk, time-stacked /snapshots, /solver. Flushed
-//! after every snapshot, so a run killed at any moment between snapshots leaves a
-//! readable file.
+//! after every snapshot and, once set up, written in HDF5's SWMR mode (start_appending),
+//! so a run killed at any moment, in a flush included, leaves a file that opens and holds
+//! every snapshot flushed before.
 #include <filesystem>
 #include <map>
 #include <span>
@@ -54,7 +55,7 @@ class RunOutput {
   //! after the checkpoint and will be written again) and the declared fields are those
   //! in the file. IoError when the file is missing or holds fewer snapshots.
   RunOutput(const std::filesystem::path& path, ContinueRun keep);
-  RunOutput(RunOutput&&) = default;
+  RunOutput(RunOutput&&) = default;  // (a moved-from output has no file, nothing to do)
   //! After a restart: the kept /snapshots rows the file had lost or garbled (see
   //! mark_lost_rows), now NaN; "" when none.
   const std::string& lost_rows() const { return lost_; }
@@ -76,6 +77,7 @@ class RunOutput {
   ~RunOutput();
 
   const std::filesystem::path& path() const { return path_; }
+  //! The HDF5 file, to read, or to change before start_appending.
   hid_t file() const { return file_.get(); }
   //! Root attribute run_id ("" for a file written before run ids existed).
   const std::string& run_id() const { return run_id_; }
@@ -111,14 +113,37 @@ class RunOutput {
                       const std::map<std::string, std::vector<double>>& fields);
   std::size_t n_snapshots() const { return n_snapshots_; }
 
+  //! Called once the file holds the groups, datasets and attributes that the snapshots
+  //! need: flushes, and from there on writes the file in SWMR mode
+  //! (h5::start_swmr_write). Returns "" or, when HDF5 cannot (an output in the HDF5 1.8
+  //! format that a restart could not rebuild), why: the file is then written as before,
+  //! and a run killed in the middle of a flush can leave it unreadable.
+  std::string start_appending();
+  //! Whether rows go to the file in SWMR mode now. Adding a group, dataset or attribute
+  //! (write_static, set_*attr, add_*, write_solver: the end of a run) leaves the mode
+  //! first, since HDF5 1.10 does not support those in it: from there on the writes go
+  //! to a copy of the file that close() puts in its place (leave_swmr).
+  bool in_swmr_mode() const { return swmr_; }
   //! Writes /solver attributes (overwritten on every call) and flushes.
   void write_solver(const SolverStats& stats, double wall_s, const std::string& status);
   void flush();
+  //! Flushes and closes the file (after leave_swmr: the copy, which then replaces the
+  //! output). IoError when that fails: the output then holds every row, without what
+  //! was written after the mode was left. The destructor closes too, and only warns.
+  void close();
 
  private:
   void ensure_group(const std::string& group);
+  void leave_swmr();
 
   std::filesystem::path path_;
+  //! Where a new output is set up, until start_appending renames it to path_ (empty
+  //! after, and for a continued output).
+  std::filesystem::path staging_;
+  bool overwrite_ = false;
+  bool swmr_ = false;
+  //! The copy that the closing writes go to (leave_swmr), empty before.
+  std::filesystem::path finishing_;
   h5::Handle file_;
   std::map<std::string, std::size_t> fields_;
   std::size_t n_snapshots_ = 0;

@@ -8,8 +8,9 @@ import subprocess
 # Read files while panoptic writes them: HDF5's file lock would refuse us.
 os.environ["HDF5_USE_FILE_LOCKING"] = "FALSE"
 
-import h5py  # noqa: E402
 import numpy as np  # noqa: E402
+
+from postprocess.reader import open_output  # noqa: E402
 
 from common import REPO, run_checked  # noqa: E402
 
@@ -50,7 +51,7 @@ def snapshot_differences(a, b, groups=("snapshots",)):
     and b in shape or in any bit (NaN = NaN), plus those present in only one; [] when
     identical."""
     diffs = []
-    with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
+    with open_output(a) as fa, open_output(b) as fb:
         for group in groups:
             if group not in fa and group not in fb:
                 continue
@@ -71,7 +72,7 @@ def lost_rows_explained(ref, out, groups=("snapshots",)):
     found lost in the file (its chunk gone after a writer was killed while HDF5 flushed
     the file), wrote as NaN and named in the root attribute `restarts`: "" if not, else
     the names of those rows."""
-    with h5py.File(ref, "r") as fa, h5py.File(out, "r") as fb:
+    with open_output(ref) as fa, open_output(out) as fb:
         note = fb.attrs.get("restarts", b"")
         note = note.decode() if isinstance(note, bytes) else str(note)
         named = []
@@ -107,30 +108,30 @@ def h5diff_snapshots(a, b):
 
 
 def rows(path):
-    with h5py.File(path, "r") as f:
+    with open_output(path) as f:
         return f["snapshots/time"].shape[0]
 
 
 def times(path):
-    with h5py.File(path, "r") as f:
+    with open_output(path) as f:
         return f["snapshots/time"][()]
 
 
 def checkpoint_attrs(path):
-    with h5py.File(path, "r") as f:
+    with open_output(path) as f:
         return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
 
 
 def row_digests(path):
     """A checkpoint's row digests: {"snapshots:St": [digest of row 0, ...], ...}."""
-    with h5py.File(path, "r") as f:
+    with open_output(path) as f:
         if "row_digests" not in f:
             return {}
         return {k: [int(x) for x in v[()]] for k, v in f["row_digests"].items()}
 
 
 def solver_attrs(path):
-    with h5py.File(path, "r") as f:
+    with open_output(path) as f:
         if "solver" not in f:
             return {}
         return {k: (v.decode() if isinstance(v, bytes) else v)
@@ -139,5 +140,5 @@ def solver_attrs(path):
 
 def y_offset(path):
     """Byte offset of the state vector /y in a checkpoint file."""
-    with h5py.File(path, "r") as f:
+    with open_output(path) as f:
         return f["y"].id.get_offset()

@@ -2,8 +2,9 @@
 reduced fiducial scene, run `panoptic scan`, read DIR/summary.h5."""
 import os
 
-import h5py
 import numpy as np
+
+from postprocess.reader import open_output  # noqa: E402
 
 from common import REPO, run_checked, text
 
@@ -39,7 +40,7 @@ def scan(exe, scan_file, out, *opts, mpi=None, expect=0, env=None):
 def summary(out):
     """DIR/summary.h5 as a dict of numpy arrays: runs/*, axes/*, outcome/*."""
     d = {}
-    with h5py.File(os.path.join(out, "summary.h5"), "r") as f:
+    with open_output(os.path.join(out, "summary.h5")) as f:
         for g in ("runs", "axes", "outcome"):
             for k, ds in f[g].items():
                 v = ds[()]
@@ -52,7 +53,7 @@ def summary(out):
 def run_summary(h5):
     """The /summary scalars of one run file, as the scan table should hold them."""
     out = {}
-    with h5py.File(h5, "r") as f:
+    with open_output(h5) as f:
         for k, ds in f["summary"].items():
             v = ds[()]
             if v.size == 1:
@@ -66,7 +67,7 @@ def run_summary_units(h5):
     """The `units` attribute of each /summary scalar of one run file (t_first_pl's as
     t_first_pl_min's), as the scan's /outcome should carry them."""
     out = {}
-    with h5py.File(h5, "r") as f:
+    with open_output(h5) as f:
         for k, ds in f["summary"].items():
             name = "t_first_pl_min" if k == "t_first_pl" else k
             out[name] = text(ds.attrs["units"])
@@ -74,5 +75,5 @@ def run_summary_units(h5):
 
 
 def run_id(h5):
-    with h5py.File(h5, "r") as f:
+    with open_output(h5) as f:
         return f.attrs["run_id"]

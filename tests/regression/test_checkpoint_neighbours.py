@@ -14,7 +14,8 @@ restart without the stopped run's --set options does) says so on stderr, with bo
 values, and records them in the output's `restarts` attribute."""
 import os
 
-import h5py
+
+from postprocess.reader import open_output  # noqa: E402
 
 from common import Checks, parse_args, text
 from restart_common import checkpoint_of, panoptic, previous_of
@@ -73,9 +74,9 @@ def main():
     p = panoptic(args.exe, SCENE, "-o", run, "--overwrite", sets=SHORT, expect=None)
     c.check(p.returncode == 0 and "removed" in p.stdout,
             f"with --overwrite: exit {p.returncode} (0), the old checkpoint removed")
-    with h5py.File(run, "r") as f:
+    with open_output(run) as f:
         new_id = text(f.attrs["run_id"])
-    with h5py.File(chk, "r") as f:
+    with open_output(chk) as f:
         chk_id = text(f.attrs["run_id"])
     c.check(not os.path.exists(previous_of(run)) and chk_id == new_id,
             f"the checkpoint is the new run's (run_id {chk_id} = {new_id}), no .prev")
@@ -102,7 +103,7 @@ def main():
                  sets=["output.t_end_yr=2e3", "output.n_snapshots=5", "grid.n_cells=50"])
     c.check("changes output.t_end_yr = 2000" in p.stderr and "(was 1000" in p.stderr,
             f"the restart's note: {p.stderr.strip()[:200]}")
-    with h5py.File(run, "r") as f:
+    with open_output(run) as f:
         restarts = text(f.attrs["restarts"])
     c.check("changed: output.t_end_yr = 2000" in restarts and "(was 1000" in restarts,
             f"recorded: {restarts[-120:]}")

@@ -9,8 +9,9 @@ import time
 # Read the file while panoptic writes it: HDF5's file lock would refuse us.
 os.environ["HDF5_USE_FILE_LOCKING"] = "FALSE"
 
-import h5py  # noqa: E402
 import numpy as np  # noqa: E402
+
+from postprocess.reader import open_output  # noqa: E402
 
 from common import REPO, Checks, load_run, parse_args, run  # noqa: E402
 
@@ -38,7 +39,7 @@ def main():
     while time.time() < deadline and proc.poll() is None:
         time.sleep(0.05)
         try:
-            with h5py.File(out, "r") as f:
+            with open_output(out) as f:
                 rows = f["snapshots/time"].shape[0]
         except Exception:  # noqa: BLE001 - a file being written can fail to read in
             rows = 0           # many ways (OSError, KeyError, RuntimeError): not yet
@@ -53,7 +54,7 @@ def main():
     n = r.n_snapshots
     print(f"killed run: {n} complete snapshots, last at t = {r.time[-1]:.4g} yr")
     c.check(n >= 5, "the killed file opens and holds the snapshots written before the kill")
-    with h5py.File(out, "r") as f:
+    with open_output(out) as f:
         lengths = {k: f["snapshots"][k].shape[0] for k in f["snapshots"]}
     c.check(min(lengths.values()) >= n, f"every snapshot dataset has the rows of time ({lengths['time']})")
     c.check(r.solver.get("status") in (None, ""), "no completion status: the file says the run did not finish")

@@ -12,8 +12,9 @@
    zone edges, first-formation times; the sublimated mass is f_ice of the pebble mass
    through the snow-line face; the snapshot times follow output.*.
 """
-import h5py
 import numpy as np
+
+from postprocess.reader import open_output  # noqa: E402
 
 from common import Checks, load_run, parse_args, run
 
@@ -128,7 +129,7 @@ def main():
     run(args.exe, "params/fiducial.toml", out, ["output.t_end_yr=3e4", "grid.n_cells=120"])
     r = load_run(out)
     s = r.snapshots
-    with h5py.File(out, "r") as f:
+    with open_output(out) as f:
         summ = {k: f["summary"][k][()] for k in f["summary"]}
     me = 5.972e27
     for ch in ("coag", "si"):

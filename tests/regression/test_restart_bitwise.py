@@ -11,6 +11,8 @@ import re
 import h5py
 import numpy as np
 
+from postprocess.reader import open_output  # noqa: E402
+
 from common import Checks, parse_args
 from restart_common import (EXIT_STOPPED, checkpoint_attrs, checkpoint_of, copy_run,
                             h5diff_snapshots, lost_rows_explained, panoptic, previous_of,
@@ -197,7 +199,7 @@ def main():
     panoptic(args.exe, FIDUCIAL, "--restart", checkpoint_of(g_cut),
              sets=g_sets + times_set(g_times))
     diffs = snapshot_differences(g_full, g_cut, MID_RUN_GROUPS)
-    with h5py.File(g_full, "r") as f:
+    with open_output(g_full) as f:
         n_series = len(f["timeseries/time"])
     c.check(not diffs and rows(g_cut) == rows(g_full),
             f"growth model cut at snapshot 4 and continued: /snapshots, /timeseries "

@@ -4,8 +4,9 @@ with exit 2 and a message naming the key, both values and the fix, before the ou
 touched; the output times, the solver settings and checkpoint.* may change. A later
 output.t_end_yr continues a finished run: the earlier snapshots stay as they were and the
 new ones follow."""
-import h5py
 import numpy as np
+
+from postprocess.reader import open_output  # noqa: E402
 
 from common import Checks, parse_args
 from restart_common import checkpoint_of, copy_run, panoptic, rows, times
@@ -68,7 +69,7 @@ def main():
     c.check(len(t) > n_done and np.all(np.diff(t) > 0) and t[-1] == 1e6,
             f"later output.t_end_yr: {len(t) - n_done} more snapshots to t = {t[-1]:.3g} yr, "
             f"times strictly increasing")
-    with h5py.File(done, "r") as a, h5py.File(later, "r") as b:
+    with open_output(done) as a, open_output(later) as b:
         same = all(np.array_equal(a["snapshots"][k][()].view(np.uint64),
                                   b["snapshots"][k][:n_done].view(np.uint64))
                    for k in a["snapshots"])

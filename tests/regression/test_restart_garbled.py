@@ -13,6 +13,8 @@ checkpoint it ends with must find nothing more (the NaN rows are what it now kee
 import h5py
 import numpy as np
 
+from postprocess.reader import open_output  # noqa: E402
+
 from common import Checks, parse_args
 from restart_common import checkpoint_attrs, checkpoint_of, panoptic, snapshot_differences
 
@@ -53,7 +55,7 @@ def main():
     named = [f"/snapshots/sigma_d row {SNAP_ROW}", f"/timeseries/mass_budget row {SERIES_ROW}"]
     c.check(all(n in p.stderr for n in named) and "garbled" in p.stderr,
             f"the restart names the garbled rows: {p.stderr.strip()!r}")
-    with h5py.File(out, "r") as f:
+    with open_output(out) as f:
         note = f.attrs["restarts"]
         note = note.decode() if isinstance(note, bytes) else str(note)
         c.check(all(n in note.split("lost rows")[-1] for n in named),
@@ -71,7 +73,7 @@ def main():
         rows = [i for i in range(n) if not (k == "mass_budget" and i == SERIES_ROW)]
         same &= np.array_equal(kept[k][rows].view(np.uint64), before[rows].view(np.uint64))
     c.check(same, "every other kept /timeseries row is unchanged")
-    with h5py.File(ref, "r") as f:
+    with open_output(ref) as f:
         ref_sd = f["snapshots/sigma_d"][()]
     others = [i for i in range(len(ref_sd)) if i != SNAP_ROW]
     diffs = [d for d in snapshot_differences(ref, out) if not d.startswith("snapshots/sigma_d")]

@@ -21,8 +21,9 @@ import signal
 import subprocess
 import time
 
-import h5py
 import numpy as np
+
+from postprocess.reader import open_output  # noqa: E402
 
 from common import Checks, parse_args
 from scan_common import scan, summary, write_scan
@@ -32,7 +33,7 @@ MASS = 'key = "star.mass_msun"\nvalues = [0.6, 1.3]'
 
 
 def snapshots(h5):
-    with h5py.File(h5, "r") as f:
+    with open_output(h5) as f:
         return {k: ds[()] for k, ds in f["snapshots"].items()}, "restarts" in f.attrs
 
 

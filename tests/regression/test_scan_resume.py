@@ -14,6 +14,8 @@ import time
 import h5py
 import numpy as np
 
+from postprocess.reader import open_output  # noqa: E402
+
 from common import Checks, parse_args
 from scan_common import run_id, scan, summary, write_scan
 
@@ -52,7 +54,7 @@ def complete_files(out):
         if p.endswith(".chk.h5"):
             continue
         try:
-            with h5py.File(p, "r") as f:
+            with open_output(p) as f:
                 st = f["solver"].attrs.get("status", b"")
                 st = st.decode() if isinstance(st, bytes) else str(st)
                 if st == "completed" and "summary" in f:
@@ -160,7 +162,7 @@ def main():
     s2 = summary(out2)
     ok = (s2["runs/status"] == "completed").all()
     for n in stopped:
-        with h5py.File(f"{out2}/runs/{n}.h5", "r") as f:
+        with open_output(f"{out2}/runs/{n}.h5") as f:
             ok &= "restarts" in f.attrs
     c.check(ok, "rerun: complete, the interrupted runs continued from their checkpoints")
     if not ok:
@@ -177,7 +179,7 @@ def main():
     c.check((s["runs/status"] == "completed").all(), "complete after --force")
     ok = True
     for i, n in enumerate(names):
-        with h5py.File(f"{out}/runs/{n}.h5", "r") as f:
+        with open_output(f"{out}/runs/{n}.h5") as f:
             cfg = f.attrs["config_toml"]
             cfg = cfg.decode() if isinstance(cfg, bytes) else cfg
         m = s["axes/star.mass_msun"][i]

@@ -41,6 +41,7 @@ TEST(H5RoundTrip, EverythingWrittenReadsBackExactly) {
                               std::numeric_limits<double>::quiet_NaN()};
   {
     RunOutput out(path, false, {"scene_x", "[grid]\nn_cells = 3\n", "abc123", "9.9"});
+    out.start_appending();
     out.write_static("grid", "r_c", r_c, "au", "cell centres");
     out.add_field("sigma_d", 3, "g cm^-2", "dust");
     out.add_field("m_dust", 0, "g", "dust mass");
@@ -92,15 +93,60 @@ TEST(H5RoundTrip, EverythingWrittenReadsBackExactly) {
 
 TEST(H5RoundTrip, ExistingOutputIsRefusedWithoutOverwrite) {
   const fs::path path = temp_file("exists.h5");
-  { RunOutput out(path, false, {"s", "", "", ""}); }
+  {
+    RunOutput out(path, false, {"s", "", "", ""});
+    out.start_appending();
+  }
   EXPECT_THROW(RunOutput(path, false, {"s", "", "", ""}), IoError);
   EXPECT_NO_THROW(RunOutput(path, true, {"s", "", "", ""}));
+}
+
+// A new output is set up beside its path and moved there by start_appending, in SWMR
+// mode: an output dropped before (a set-up that failed, a run killed in it) leaves
+// nothing at the path and no stub, and the file that --overwrite replaces is the one at
+// the path until then.
+TEST(H5RoundTrip, NewOutputAppearsAtItsPathOnlyOnceStarted) {
+  const fs::path path = temp_file("staged.h5");
+  const fs::path staging = path.string() + ".setup.tmp";
+  {
+    RunOutput out(path, false, {"first", "", "", ""});
+    EXPECT_FALSE(fs::exists(path));
+    EXPECT_TRUE(fs::exists(staging));
+  }
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_FALSE(fs::exists(staging));
+  {
+    RunOutput out(path, false, {"first", "", "", ""});
+    out.start_appending();
+    EXPECT_TRUE(fs::exists(path));
+    EXPECT_FALSE(fs::exists(staging));
+    unsigned intent = 0;
+    ASSERT_GE(H5Fget_intent(out.file(), &intent), 0);
+    EXPECT_NE(intent & H5F_ACC_SWMR_WRITE, 0u);
+    EXPECT_TRUE(out.in_swmr_mode());
+    out.write_snapshot(0.0, {});
+    // the closing attributes: the file leaves SWMR mode first (HDF5 1.10 fails to
+    // flush attributes created in it: "slist not empty")
+    out.write_solver(SolverStats{}, 1.0, "completed");
+    EXPECT_FALSE(out.in_swmr_mode());
+    ASSERT_GE(H5Fget_intent(out.file(), &intent), 0);
+    EXPECT_EQ(intent & H5F_ACC_SWMR_WRITE, 0u);
+  }
+  h5::quiet_errors();
+  {
+    RunOutput out(path, true, {"second", "", "", ""});
+    h5::Handle f = h5::open_file(path.string(), false);  // still the first run's file
+    EXPECT_EQ(h5::get_attr_string(f.get(), "scene"), "first");
+  }
+  h5::Handle f = h5::open_file(path.string(), false);  // a dropped set-up left it so
+  EXPECT_EQ(h5::get_attr_string(f.get(), "scene"), "first");
 }
 
 TEST(H5RoundTrip, StaticDatasetIsReplacedNotDuplicated) {
   const fs::path path = temp_file("replace.h5");
   {
     RunOutput out(path, false, {"s", "", "", ""});
+    out.start_appending();
     out.write_static("summary", "m", std::vector<double>{1.0}, "M_earth", "first");
     out.write_static("summary", "m", std::vector<double>{2.0}, "M_earth", "second");
   }
@@ -118,6 +164,7 @@ TEST(H5RoundTrip, RootAttributesBeyond64KiBAreWrittenAndReplaced) {
   const std::string big(200000, 'x'), bigger(300000, 'y');
   {
     RunOutput out(path, false, {"s", big, "", ""});
+    out.start_appending();
     EXPECT_EQ(out.root_attr("config_toml"), big);
     out.set_root_attr("config_toml", bigger);
     EXPECT_EQ(out.root_attr("config_toml"), bigger);
@@ -142,6 +189,7 @@ TEST(H5RoundTrip, CopyFileKeepsEveryRowAttributeAndLostChunk) {
   const std::vector<double> row0{1.5, -0.0, 1e-300}, row2{3.0, 4.0, 5.0};
   {
     RunOutput out(path, false, {"scene_c", "[grid]\nn_cells = 3\n", "sha", "1.0"});
+    out.start_appending();
     out.write_static("grid", "r_c", std::vector<double>{1.0, 2.0, 3.0}, "au", "centres");
     out.add_field("sigma_d", 3, "g cm^-2", "dust");
     out.write_snapshot(0.0, {{"sigma_d", row0}});
@@ -202,6 +250,7 @@ TEST(H5RoundTrip, CopyFileKeepsEveryRowAttributeAndLostChunk) {
 TEST(H5RoundTrip, RowDigestsCountedAtASnapshotAreThoseCopiedThen) {
   const fs::path path = temp_file("digests.h5");
   RunOutput out(path, false, {"s", "", "", ""});
+  out.start_appending();
   out.add_field("sigma_d", 2, "g cm^-2", "dust");
   out.add_series("timeseries", "flux", 1, "M_earth Myr^-1", "flux");
   out.write_snapshot(0.0, {{"sigma_d", {1.0, 2.0}}});

@@ -127,6 +127,7 @@ TEST(RunDiagnostics, SummaryOfAStateSetByHand) {
   {
     RunOutput out(path, false, {"fiducial", "", "", ""});
     RunDiagnostics diag(sim, out, 0.0);
+    out.start_appending();
     diag.on_step(t1, y1);
     diag.on_step(t2, y2);
     diag.finish(t3, y2);
@@ -226,6 +227,7 @@ TEST(RunDiagnostics, GridIsWrittenInAu) {
   fs::remove(path);
   {
     RunOutput out(path, false, {"fiducial", "", "", ""});
+    out.start_appending();
     sim.prepare_output(out);
   }
   h5::quiet_errors();

@@ -33,6 +33,7 @@ TEST(H5RoundTrip, EverySolverCounterUnderItsOwnName) {
   s.nreinit = 19;
   {
     RunOutput out(path, false, {"s", "", "", ""});
+    out.start_appending();
     out.write_solver(s, 23.0, "stopped");
   }
   h5::quiet_errors();
