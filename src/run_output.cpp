@@ -389,14 +389,23 @@ void RunOutput::leave_swmr() {
   finishing_ = path_.string() + ".finish.tmp";
   std::error_code ec;
   std::filesystem::remove(finishing_, ec);  // left by a run killed in its closing writes
-  try {
-    h5::copy_file(path_.string(), finishing_.string());
-    file_ = h5::open_file(finishing_.string(), true);
-  } catch (const IoError& e) {
-    const int err = errno;  // of the failed write, if it was one
+  // A copy of the bytes: the file is closed and whole (h5::copy_file, which rebuilds
+  // every chunk index, took 47 s for a run of 3 000 snapshots of 4 cells).
+  std::string why;
+  if (!std::filesystem::copy_file(path_, finishing_, ec) || ec) {
+    why = ec.message();
+  } else {
+    try {
+      file_ = h5::open_file(finishing_.string(), true);
+    } catch (const IoError& e) {
+      why = e.what();
+    }
+  }
+  if (!why.empty()) {
+    const int err = ec ? ec.value() : errno;  // of the failed write, if it was one
     std::filesystem::remove(finishing_, ec);
     throw IoError(path_.string() + ": the copy that its closing writes go to (" +
-                  finishing_.string() + ") could not be written (" + e.what() + ")" +
+                  finishing_.string() + ") could not be written (" + why + ")" +
                   write_failure_hint(finishing_, err) + "; " + path_.string() +
                   " holds every snapshot, without /summary and /solver");
   }
