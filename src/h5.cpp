@@ -91,14 +91,24 @@ std::vector<T> read_array(hid_t parent, const std::string& name, hid_t mem_type)
   return out;
 }
 
-//! The file address of the chunk of dataset `ds` that holds row `row`: HADDR_UNDEF when
-//! the chunk is not allocated; a negative status when HDF5 cannot read its index.
-herr_t chunk_address(hid_t ds, hsize_t row, haddr_t* addr) {
+//! Whether the chunk of dataset `ds` that holds row `row` is allocated (written), in
+//! `allocated`; a negative status when HDF5 cannot read its index.
+//! H5Dget_chunk_info_by_coord walks the whole index in HDF5 1.10 (0.16 ms a call for a
+//! dataset of 3 000 chunks: 43 s to copy such an output at a restart), so the chunk is
+//! first looked up directly (H5Dget_chunk_storage_size, 0.2 us); that fails for a chunk
+//! that is not allocated and for an unreadable index alike, and only then is the index
+//! walked to tell the two apart.
+herr_t chunk_allocated(hid_t ds, hsize_t row, bool* allocated) {
   std::array<hsize_t, 2> offset{row, 0};
-  unsigned filter_mask = 0;
   hsize_t size = 0;
-  *addr = HADDR_UNDEF;
-  return H5Dget_chunk_info_by_coord(ds, offset.data(), &filter_mask, addr, &size);
+  *allocated = H5Dget_chunk_storage_size(ds, offset.data(), &size) >= 0 && size > 0;
+  if (*allocated) return 0;
+  unsigned filter_mask = 0;
+  haddr_t addr = HADDR_UNDEF;
+  const herr_t status =
+      H5Dget_chunk_info_by_coord(ds, offset.data(), &filter_mask, &addr, &size);
+  *allocated = status >= 0 && addr != HADDR_UNDEF;
+  return status;
 }
 
 }  // namespace
@@ -252,9 +262,9 @@ std::vector<std::pair<hsize_t, hsize_t>> unallocated_rows(hid_t parent,
   const int rank = H5Pget_chunk(dcpl.get(), 2, chunk.data());
   if (rank < 1 || chunk[0] == 0) return lost;
   for (hsize_t first = 0; first < rows; first += chunk[0]) {
-    haddr_t addr = HADDR_UNDEF;
-    ok(chunk_address(ds.get(), first, &addr), "chunk index of", name);
-    if (addr != HADDR_UNDEF) continue;
+    bool allocated = false;
+    ok(chunk_allocated(ds.get(), first, &allocated), "chunk index of", name);
+    if (allocated) continue;
     const hsize_t last = std::min(first + chunk[0], rows);
     if (!lost.empty() && lost.back().second == first)
       lost.back().second = last;
@@ -398,8 +408,8 @@ void copy_dataset(hid_t src, hid_t dst, const std::string& name) {
   Handle fspace(ok(H5Dget_space(out.get()), "dataspace of " + name), H5Sclose);
   for (hsize_t first = 0; first < dims[0]; first += step) {
     const hsize_t last = std::min(first + step, dims[0]);
-    haddr_t addr = HADDR_UNDEF;
-    if (chunk_address(ds.get(), first, &addr) < 0 || addr == HADDR_UNDEF) continue;
+    bool allocated = false;
+    if (chunk_allocated(ds.get(), first, &allocated) < 0 || !allocated) continue;
     const std::array<hsize_t, 2> start{first, 0}, count{last - first, width};
     ok(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr,
                            count.data(), nullptr),

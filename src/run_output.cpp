@@ -37,13 +37,14 @@ std::string new_run_id() {
 // index inconsistent, and a run that appends to it can lose rows it writes itself
 // (regression.test_restart_killed under load: a restart that completed had rows 51-55,
 // the first it wrote, unallocated). h5::copy_file rebuilds every dataset with a new
-// index; the copy replaces the file atomically (written beside it, fsynced, renamed).
+// index; the copy is written beside the file, at `tmp`, and fsynced; the restart sets it
+// up and RunOutput::start_appending renames it over the file, so that a restart killed
+// before leaves the file as it was.
 // HDF5 1.10 can crash on a file damaged badly enough (H5Ocopy did, with SIGSEGV, before
 // copy_file copied dataset by dataset), so the copy runs in a child process: a crash
 // there costs the rebuild, not the restart.
 // Returns "" or, when the copy fails, why: the file is then continued in place.
-std::string rebuild(const std::filesystem::path& path) {
-  const std::filesystem::path tmp = path.string() + ".restart.tmp";
+std::string rebuild(const std::filesystem::path& path, const std::filesystem::path& tmp) {
   std::error_code ec;
   std::filesystem::remove(tmp, ec);  // left by a restart killed while copying
   std::fflush(nullptr);
@@ -75,15 +76,7 @@ std::string rebuild(const std::filesystem::path& path) {
     why = std::string("HDF5 crashed copying it (") + ::strsignal(WTERMSIG(status)) + ")";
   else if (WEXITSTATUS(status) != 0)
     why = "HDF5 could not copy it";
-  if (why.empty()) {
-    try {
-      rename_or_throw(tmp, path);
-      fsync_path(path.has_parent_path() ? path.parent_path() : ".", true);
-      return "";
-    } catch (const IoError& e) {
-      why = e.what();
-    }
-  }
+  if (why.empty()) return "";
   std::filesystem::remove(tmp, ec);
   return "could not rebuild it as a fresh copy (" + why +
          ": the file is damaged); continued in place";
@@ -137,9 +130,14 @@ RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path
     throw IoError(path.string() +
                   ": the output file of the checkpoint does not exist; pass the run's "
                   "output file with -o");
-  rebuild_note_ = rebuild(path);
+  const std::filesystem::path copy = path.string() + ".restart.tmp";
+  rebuild_note_ = rebuild(path, copy);
+  if (rebuild_note_.empty()) {  // the copy is set up, and put in place when started
+    staging_ = copy;
+    overwrite_ = true;
+  }
   try {
-    file_ = h5::open_file(path.string(), true);
+    file_ = h5::open_file(staging_.empty() ? path.string() : staging_.string(), true);
   } catch (const IoError&) {
     throw IoError(path.string() +
                   ": cannot open the output file read-write (damaged, not HDF5, or "
@@ -361,10 +359,11 @@ void RunOutput::write_solver(const SolverStats& s, double wall_s,
 std::string RunOutput::start_appending() {
   flush();
   swmr_ = h5::start_swmr_write(file_.get());
-  if (!staging_.empty()) {  // a new output: in place now, consistent from here on
+  if (!staging_.empty()) {  // set up aside (a new output, a restart's copy): in place now
     flush();
     refuse_to_replace(path_, overwrite_);  // nothing has appeared there since
     rename_or_throw(staging_, path_);
+    fsync_path(path_.has_parent_path() ? path_.parent_path() : ".", true);
     staging_.clear();
   }
   if (swmr_) return "";

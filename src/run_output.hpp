@@ -49,11 +49,11 @@ class RunOutput {
   //! `overwrite`: a run never silently replaces data. The file gets a fresh random
   //! root attribute run_id, which its checkpoints record.
   RunOutput(const std::filesystem::path& path, bool overwrite, const RunMetadata& meta);
-  //! Reopens an existing output read-write to continue it (restart), after replacing it
-  //! by a fresh copy of itself (rebuild_note): every /snapshots
-  //! stack is cut to its first `keep.n_snapshots` rows (rows after them were written
-  //! after the checkpoint and will be written again) and the declared fields are those
-  //! in the file. IoError when the file is missing or holds fewer snapshots.
+  //! Continues an existing output (restart) in a fresh copy of it (rebuild_note), which
+  //! start_appending puts in its place (until then the output is as it was): every
+  //! /snapshots stack is cut to its first `keep.n_snapshots` rows (rows after them were
+  //! written after the checkpoint and will be written again) and the declared fields are
+  //! those in the file. IoError when the file is missing or holds fewer snapshots.
   RunOutput(const std::filesystem::path& path, ContinueRun keep);
   RunOutput(RunOutput&&) = default;  // (a moved-from output has no file, nothing to do)
   //! After a restart: the kept /snapshots rows the file had lost or garbled (see
@@ -137,8 +137,9 @@ class RunOutput {
   void leave_swmr();
 
   std::filesystem::path path_;
-  //! Where a new output is set up, until start_appending renames it to path_ (empty
-  //! after, and for a continued output).
+  //! Where the file is set up, until start_appending renames it to path_: a new
+  //! output's `<out>.setup.tmp`, a restart's fresh copy `<out>.restart.tmp` (empty
+  //! after, and for an output continued in place).
   std::filesystem::path staging_;
   bool overwrite_ = false;
   bool swmr_ = false;

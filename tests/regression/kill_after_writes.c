@@ -3,6 +3,8 @@
 // $PANOPTIC_KILL_PATH, N = $PANOPTIC_KILL_AFTER_WRITES (the output, and the name it is
 // set up under). A write that returns is in the page cache: the file is then exactly as
 // a SIGKILL at that moment leaves it, so N = 0, 1, 2, ... goes through every state.
+// Only the process started counts: a child it forks (the copy a restart makes of the
+// output) writes unhindered, as it does when its parent is killed.
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <limits.h>
@@ -14,11 +16,14 @@
 #include <unistd.h>
 
 static long writes = 0;
+static pid_t owner = 0;
+
+__attribute__((constructor)) static void remember_owner(void) { owner = getpid(); }
 
 static void count_or_kill(int fd) {
   const char* prefix = getenv("PANOPTIC_KILL_PATH");
   const char* limit = getenv("PANOPTIC_KILL_AFTER_WRITES");
-  if (!prefix || !limit) return;
+  if (!prefix || !limit || getpid() != owner) return;
   char link[64], path[PATH_MAX];
   snprintf(link, sizeof link, "/proc/self/fd/%d", fd);
   const ssize_t n = readlink(link, path, sizeof path - 1);
