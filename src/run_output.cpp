@@ -139,6 +139,7 @@ RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path
   try {
     file_ = h5::open_file(staging_.empty() ? path.string() : staging_.string(), true);
   } catch (const IoError&) {
+    if (!staging_.empty()) std::filesystem::remove(staging_, ec);
     throw IoError(path.string() +
                   ": cannot open the output file read-write (damaged, not HDF5, or "
                   "open in another program?)");
@@ -176,6 +177,8 @@ RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path
     lost_ = keep_rows("snapshots", keep.n_snapshots);
     flush();
   } catch (const IoError& e) {
+    file_.reset();  // the copy is not needed: the output stays as it was
+    if (!staging_.empty()) std::filesystem::remove(staging_, ec);
     throw_if_damaged(e);
     throw;
   }
