@@ -2,7 +2,9 @@
 incomplete, it is refused with a message naming the file and what is wrong, and the
 previous checkpoint (.chk.prev.h5) is used instead, with a message saying so; the run
 then completes identical to the uninterrupted one. With both damaged: exit 4 and a
-message naming both. A restart from a file that is not a checkpoint: exit 4."""
+message naming both. A restart from a file that is not a checkpoint: exit 4. An output
+with a stack shorter than the checkpoint's snapshots: exit 4, the output unchanged and
+no copy left beside it."""
 import os
 
 import h5py
@@ -89,6 +91,26 @@ def main():
             and "without --restart" in p.stderr,
             "both damaged: exit 4, the message names both files and the fix")
     c.check(rows(out) == 21, "both damaged: the output is left as it was")
+
+    # an output damaged in a way only the set-up of the continued copy sees (a stack
+    # shorter than the checkpoint's snapshots): exit 4 naming it, the output left byte
+    # for byte as it was and no copy beside it (the restart sets up <out>.restart.tmp and
+    # renames it over the output only once set up)
+    out = f"{w}/short.h5"
+    copy_run(base, out)
+    with h5py.File(out, "r+") as f:
+        st = f["snapshots/St"]
+        st.resize((5, st.shape[1]))
+    with open(out, "rb") as f:
+        before = f.read()
+    p = panoptic(args.exe, SCENE, "--restart", checkpoint_of(out), "-o", out,
+                 sets=full_sets, expect=4)
+    with open(out, "rb") as f:
+        after = f.read()
+    c.check("/snapshots/St has fewer rows" in p.stderr and after == before
+            and not os.path.exists(out + ".restart.tmp"),
+            f"a short stack: exit 4 ({p.stderr.strip().splitlines()[-1]!r}), the output "
+            "unchanged, no copy left beside it")
 
     # the wrong file, not a damaged one: bad input, naming the checkpoint to give (it was
     # exit 4 with the advice to start the run again without --restart)
