@@ -37,6 +37,7 @@ Usage:
     t, m = run.budget("m_out_inner")        # (ns,) [yr], [M_earth]
     run.dust_mass()                         # (nt,) [g]
 """
+import os
 import tomllib
 import warnings
 
@@ -264,7 +265,12 @@ def load_run(path):
     with open_output(path) as f:
         _refuse_other_files(f, path)
         units, descriptions = {}, {}
-        f.visititems(lambda name, obj: _collect_units(units, descriptions, name, obj))
+        for group in f:  # group by group: an unreadable object costs its group's units
+            try:
+                f[group].visititems(lambda name, obj, g=group: _collect_units(
+                    units, descriptions, f"{g}/{name}", obj))
+            except (KeyError, OSError, RuntimeError):
+                pass  # named by _read_group
         grid = _read_group(f, "grid")
         disk = _read_group(f, "disk")
         r_snow_au = float(f["disk"].attrs.get("r_snow_au", np.nan)) if "disk" in f else np.nan
@@ -324,11 +330,36 @@ def _name_list(f, group, attr):
     return [s for s in raw.split(";") if s]
 
 
+# How often HDF5 re-reads a metadata entry whose checksum fails, in SWMR reading, before
+# it gives up: its default, 100, with a back-off that doubles at each attempt, waits
+# for ever on an entry a SIGKILL tore (src/h5.hpp, kSwmrReadAttempts).
+SWMR_READ_ATTEMPTS = 24
+
+
+def _open_swmr_read(path):
+    """h5py.File(path, 'r', swmr=True), with SWMR_READ_ATTEMPTS set through the HDF5
+    library h5py uses (h5py does not expose it); without them where that library cannot
+    be reached by name."""
+    import ctypes
+    fapl = h5py.h5p.create(h5py.h5p.FILE_ACCESS)
+    for name in ("libhdf5_serial.so.103", "libhdf5.so.103", "libhdf5_serial.so",
+                 "libhdf5.so"):
+        try:
+            fn = ctypes.CDLL(name).H5Pset_metadata_read_attempts
+        except (OSError, AttributeError):
+            continue
+        fn.argtypes, fn.restype = [ctypes.c_int64, ctypes.c_uint], ctypes.c_int
+        if fn(fapl.id, SWMR_READ_ATTEMPTS) >= 0:  # not h5py's library if this fails
+            fid = h5py.h5f.open(os.fsencode(path),
+                                h5py.h5f.ACC_RDONLY | h5py.h5f.ACC_SWMR_READ, fapl=fapl)
+            return h5py.File(fid)
+    return h5py.File(path, "r", swmr=True)
+
+
 def open_output(path):
     """A run's output, read-only: h5py.File(path, 'r'); for a run's output whose writer still runs or was killed
     (panoptic writes its output in HDF5's SWMR mode, and HDF5 refuses a plain open of
     such a file), the file opened for SWMR reading: every row flushed before, consistent."""
-    import os
     if os.path.isdir(path):
         raise IsADirectoryError(f"{path} is a directory; give a run's .h5 file (a scan's "
                                 f"runs are in {os.path.join(str(path), 'runs')})")
@@ -338,7 +369,7 @@ def open_output(path):
         if "consistency flags" not in str(err):
             raise
         try:
-            return h5py.File(path, "r", swmr=True)
+            return _open_swmr_read(path)
         except OSError:
             raise OSError(f"{path}: the writer did not close the file; run "
                           f"`h5clear -s {path}` (on a copy, if you prefer) and retry") from err
@@ -352,10 +383,22 @@ def _collect_units(units, descriptions, name, obj):
 
 
 def _read_group(f, group):
-    """dict name -> array of the datasets directly inside `group` (empty if absent)."""
+    """dict name -> array of the datasets directly inside `group` (empty if absent). A
+    dataset HDF5 cannot read (its header torn by a SIGKILL in the middle of its write)
+    is left out, with a warning."""
     if group not in f:
         return {}
-    return {name: obj[()] for name, obj in f[group].items() if isinstance(obj, h5py.Dataset)}
+    out = {}
+    for name in f[group]:
+        try:
+            obj = f[group][name]
+            if isinstance(obj, h5py.Dataset):
+                out[name] = obj[()]
+        except (KeyError, OSError, RuntimeError) as err:
+            warnings.warn(f"{f.filename}: /{group}/{name} cannot be read ({err}): left out "
+                          f"(torn by a kill? a restart of the run recreates it)",
+                          stacklevel=3)
+    return out
 
 
 def _truncate_to_common_length(snapshots, path, group="snapshots", stacklevel=3):

@@ -252,6 +252,30 @@ def check_reader_killed(tmp):
     return f"reader: killed run (sigma_g one row short, no /solver) cut to {nt} rows, warned"
 
 
+def check_reader_torn_dataset(tmp):
+    # a dataset whose header a SIGKILL tore (its checksum fails): left out, warned; the
+    # rest of the file reads
+    path = os.path.join(tmp, "torn.h5")
+    ref = write_run(path)
+    with h5py.File(path, "a", libver="latest") as f:
+        g = f["snapshots"]
+        g.create_dataset("torn", data=np.ones((len(ref["time"]), 3)))  # header checksummed
+        addr = g.id.links.get_info(b"torn").u
+    with open(path, "r+b") as fh:
+        fh.seek(addr + 24)
+        torn = bytes(x ^ 0xA5 for x in fh.read(8))
+        fh.seek(addr + 24)
+        fh.write(torn)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        run = reader.load_run(path)
+    assert "torn" not in run.snapshots and run.n_snapshots == len(ref["time"])
+    assert np.array_equal(run.field("sigma_d"), ref["sigma_d"])
+    assert any("/snapshots/torn cannot be read" in str(w.message) for w in caught), \
+        [str(w.message) for w in caught]
+    return "reader: a dataset with a torn header left out, warned; the rest read"
+
+
 def check_reader_new_groups(tmp):
     path = os.path.join(tmp, "groups.h5")
     ref, diag = write_full_run(path)
@@ -871,7 +895,8 @@ def _is_png(path):
         return f.read(8) == b"\x89PNG\r\n\x1a\n"
 
 
-CHECKS = [check_reader_complete, check_reader_killed, check_reader_new_groups,
+CHECKS = [check_reader_complete, check_reader_killed, check_reader_torn_dataset,
+          check_reader_new_groups,
           check_reader_groups_absent, check_reader_refuses_other_files,
           check_reader_stopped_or_failed_not_finished,
           check_reader_timeseries_killed,

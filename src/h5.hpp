@@ -53,6 +53,13 @@ Handle create_file_in_memory(const std::string& path);
 //! writer (a run's output while it runs, or after the run was killed) is opened for
 //! SWMR reading: what the writer last flushed, consistent.
 Handle open_file(const std::string& path, bool writable);
+//! How often a SWMR reader reads a metadata entry whose checksum fails before it gives
+//! up. HDF5 1.10's default, 100, with a back-off that doubles at each attempt, waits
+//! for ever on an entry that a SIGKILL tore (the kernel can stop a write at a page
+//! boundary: a restart's copy hung for 12 min on /snapshots/St of a killed output of
+//! regression.test_restart_killed). 24 attempts give up after ~0.07 s, still long
+//! enough for a live writer to finish an entry (a flush takes microseconds).
+inline constexpr unsigned kSwmrReadAttempts = 24;
 //! Switches file `f` (opened read-write or created by this process) to SWMR writing
 //! (HDF5's single-writer/multiple-reader mode): from here on HDF5 writes its metadata in
 //! an order that keeps the file on disk consistent at every write, so a process killed

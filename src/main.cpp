@@ -282,6 +282,9 @@ int run(const RunArgs& a) {
     refuse_output_is_input(out_path, restart->path, "the checkpoint it restarts from");
   RunOutput out = restart ? continue_output(*restart, a.output, cfg, changed)
                           : new_output(cfg, sim, out_path, a.overwrite);
+  // a continued output's /grid, /disk and fields declared again: a field that the
+  // restart's copy could not read is recreated (RunOutput::add_field)
+  if (restart) sim.prepare_output(out);
   const fs::path chk_path = checkpoint_path(out.path());
   std::printf("panoptic %s: scene %s -> %s\n%s", PANOPTIC_VERSION, a.scene.c_str(),
               out.path().c_str(), sim.summary().c_str());

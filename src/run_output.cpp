@@ -320,8 +320,21 @@ void RunOutput::add_field(const std::string& name, std::size_t width,
                           const std::string& units, const std::string& description) {
   leave_swmr();
   h5::Handle g = h5::open_group(file_.get(), "snapshots");
+  if (n_snapshots_ > 0 && fields_.contains(name)) return;  // continued: in the file
   h5::create_stack(g.get(), name, width, units, description);
   fields_[name] = width;
+  if (n_snapshots_ == 0) return;
+  // A continued output without this field: the restart's copy could not read it (its
+  // header torn by a kill). Recreated, with NaN in the rows kept, and said (lost_rows).
+  const std::vector<double> nan(width == 0 ? 1 : width,
+                                std::numeric_limits<double>::quiet_NaN());
+  auto& digests = digests_["snapshots/" + name];
+  for (std::size_t i = 0; i < n_snapshots_; ++i) {
+    h5::append_row(g.get(), name, nan);
+    digests.push_back(row_digest(nan));
+  }
+  lost_ += (lost_.empty() ? "/snapshots/" : "; /snapshots/") + name + " rows 0-" +
+           std::to_string(n_snapshots_ - 1) + " (the dataset was unreadable: recreated)";
 }
 
 void RunOutput::write_snapshot(double t_yr,
@@ -372,8 +385,8 @@ std::string RunOutput::start_appending() {
   if (swmr_) return "";
   return "HDF5 cannot write " + path_.string() +
          " in SWMR mode (a file in the HDF5 1.8 format, from an older panoptic, that the "
-         "restart could not rebuild): a kill in the middle of a flush can leave it "
-         "unreadable";
+         "restart could not rebuild, or a file system on which HDF5 cannot lock it): a "
+         "kill in the middle of a flush can leave it unreadable";
 }
 
 // HDF5 1.10 does not support creating or deleting objects and attributes in SWMR mode

@@ -106,6 +106,9 @@ class RunOutput {
                      std::span<const double> row);
 
   //! Declares /snapshots/<name>, `width` values per snapshot (0: a scalar per snapshot).
+  //! For a continued output (restart), a field already in the file is kept; one the
+  //! file lost (unreadable, left out of the restart's copy) is recreated with NaN rows
+  //! up to the checkpoint's snapshot, and named in lost_rows().
   void add_field(const std::string& name, std::size_t width, const std::string& units,
                  const std::string& description);
   //! Appends one snapshot: /snapshots/time and every declared field, then flushes.
@@ -116,8 +119,9 @@ class RunOutput {
   //! Called once the file holds the groups, datasets and attributes that the snapshots
   //! need: flushes, and from there on writes the file in SWMR mode
   //! (h5::start_swmr_write). Returns "" or, when HDF5 cannot (an output in the HDF5 1.8
-  //! format that a restart could not rebuild), why: the file is then written as before,
-  //! and a run killed in the middle of a flush can leave it unreadable.
+  //! format that a restart could not rebuild, a file system on which HDF5 cannot lock
+  //! it), why: the file is then written as before, and a run killed in the middle of a
+  //! flush can leave it unreadable.
   std::string start_appending();
   //! Whether rows go to the file in SWMR mode now. Adding a group, dataset or attribute
   //! (write_static, set_*attr, add_*, write_solver: the end of a run) leaves the mode
