@@ -172,8 +172,8 @@ Handle open_file(const std::string& path, bool writable) {
                "opening file " + path),
             H5Fclose};
   hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (id <
-      0) {  // HDF5 refuses a plain open of a file whose SWMR writer runs or was killed
+  // HDF5 refuses a plain open of a file whose SWMR writer runs or was killed
+  if (id < 0) {
     Handle fapl(ok(H5Pcreate(H5P_FILE_ACCESS), "property list"), H5Pclose);
     ok(H5Pset_metadata_read_attempts(fapl.get(), kSwmrReadAttempts),
        "setting the read attempts of", path);
@@ -182,11 +182,7 @@ Handle open_file(const std::string& path, bool writable) {
   return {ok(id, "opening file " + path), H5Fclose};
 }
 
-bool start_swmr_write(hid_t f) {
-  unsigned intent = 0;
-  if (H5Fget_intent(f, &intent) >= 0 && (intent & H5F_ACC_SWMR_WRITE) != 0) return true;
-  return H5Fstart_swmr_write(f) >= 0;
-}
+bool start_swmr_write(hid_t f) { return H5Fstart_swmr_write(f) >= 0; }
 
 Handle create_group(hid_t parent, const std::string& name) {
   return {ok(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),

@@ -115,9 +115,7 @@ RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
   } catch (const IoError& e) {
     const int err = errno;  // of the failed write, if it was one
     const std::string hint = write_failure_hint(path, err);
-    // the stub holds no snapshot: removed; the file at `path` was not touched
-    file_.reset();
-    std::filesystem::remove(staging_, ec);
+    discard_staging();  // the stub holds no snapshot; the file at `path` was not touched
     if (std::string_view(e.what()).starts_with(path.string())) throw;
     throw IoError(path.string() + ": " + e.what() + hint);
   }
@@ -139,7 +137,7 @@ RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path
   try {
     file_ = h5::open_file(staging_.empty() ? path.string() : staging_.string(), true);
   } catch (const IoError&) {
-    if (!staging_.empty()) std::filesystem::remove(staging_, ec);
+    discard_staging();
     throw IoError(path.string() +
                   ": cannot open the output file read-write (damaged, not HDF5, or "
                   "open in another program?)");
@@ -177,8 +175,7 @@ RunOutput::RunOutput(const std::filesystem::path& path, ContinueRun keep) : path
     lost_ = keep_rows("snapshots", keep.n_snapshots);
     flush();
   } catch (const IoError& e) {
-    file_.reset();  // the copy is not needed: the output stays as it was
-    if (!staging_.empty()) std::filesystem::remove(staging_, ec);
+    discard_staging();  // the copy is not needed: the output stays as it was
     throw_if_damaged(e);
     throw;
   }
@@ -257,18 +254,24 @@ std::string RunOutput::root_attr(const std::string& name) const {
 
 RunOutput::~RunOutput() {
   if (!file_.valid()) return;
-  std::error_code ec;
   if (!staging_.empty()) {  // set up but never started: a stub, not an output
-    file_.reset();
-    std::filesystem::remove(staging_, ec);
+    discard_staging();
     return;
   }
+  std::error_code ec;
   try {
     close();
   } catch (const IoError& e) {  // the output keeps every row; its closing writes are lost
     std::fprintf(stderr, "panoptic: warning: %s\n", e.what());
     if (!finishing_.empty()) std::filesystem::remove(finishing_, ec);
   }
+}
+
+void RunOutput::discard_staging() {
+  file_.reset();
+  std::error_code ec;
+  if (!staging_.empty()) std::filesystem::remove(staging_, ec);
+  staging_.clear();
 }
 
 void RunOutput::ensure_group(const std::string& group) {

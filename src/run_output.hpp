@@ -139,6 +139,9 @@ class RunOutput {
  private:
   void ensure_group(const std::string& group);
   void leave_swmr();
+  //! Closes the file set up aside (staging_) and removes it: a set-up that failed or
+  //! was never started; the file at path_ is as it was.
+  void discard_staging();
 
   std::filesystem::path path_;
   //! Where the file is set up, until start_appending renames it to path_: a new
