@@ -1,7 +1,7 @@
 #pragma once
 //! Where the gas surface density of a cell comes from: a state variable when the scene
 //! evolves the gas (gas.evolve, spec §1.2), else the static profile. Templated reads so
-//! that face fluxes can be differentiated exactly (src/autodiff.hpp).
+//! that face fluxes can be differentiated exactly (src/core/autodiff.hpp).
 #include <vector>
 
 namespace panoptic {

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "disk/gas_column.hpp"
-#include "src/physics_module.hpp"
-#include "src/state_layout.hpp"
+#include "src/solver/physics_module.hpp"
+#include "src/solver/state_layout.hpp"
 
 namespace panoptic {
 

@@ -9,9 +9,9 @@
 
 #include "physics/drag.hpp"
 #include "physics/growth_options.hpp"
-#include "physics/local_gas.hpp"
+#include "disk/local_gas.hpp"
 #include "physics/smooth_switches.hpp"
-#include "src/units.hpp"
+#include "src/core/units.hpp"
 
 namespace panoptic::physics {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "src/units.hpp"
+#include "src/core/units.hpp"
 
 namespace panoptic::physics {
 namespace {

@@ -8,10 +8,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "physics/local_gas.hpp"
+#include "disk/local_gas.hpp"
 #include "physics/particle.hpp"
 #include "physics/smooth_switches.hpp"
-#include "src/autodiff.hpp"
+#include "src/core/autodiff.hpp"
 
 namespace panoptic::physics {
 

@@ -8,7 +8,7 @@
 
 #include "physics/drag.hpp"
 #include "physics/growth_options.hpp"
-#include "physics/local_gas.hpp"
+#include "disk/local_gas.hpp"
 #include "physics/particle.hpp"
 #include "physics/relative_velocity.hpp"
 #include "physics/smooth_switches.hpp"

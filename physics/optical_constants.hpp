@@ -1,7 +1,7 @@
 #pragma once
 //! Optical constants of the dust for `panoptic observe`: tables of the complex refractive
 //! index m = n + i k against wavelength (set per species in the scene, [observe] keys in
-//! src/scene_keys.cpp), effective-medium rules for porous aggregates and for the
+//! src/scene/scene_keys.cpp), effective-medium rules for porous aggregates and for the
 //! ice-silicate mix, and the absorption opacity of one sphere.
 #include <complex>
 #include <span>

@@ -11,15 +11,15 @@
 //! overloads), every intermediate is stored in a named T (never `auto`: Eigen's AutoDiff
 //! expressions reference temporaries), and no std::max/std::min on T (their derivative
 //! jumps): use soft_max/soft_min/logistic. The gas is a LocalGasT<G>
-//! (physics/local_gas.hpp): G = double, or AD where the Jacobian differentiates an
+//! (disk/local_gas.hpp): G = double, or AD where the Jacobian differentiates an
 //! evolving Sigma_g; quantities derived from its density-dependent fields are G, never
 //! double.
 #include <cmath>
 
-#include "physics/local_gas.hpp"
+#include "disk/local_gas.hpp"
 #include "physics/smooth_switches.hpp"
-#include "src/autodiff.hpp"
-#include "src/units.hpp"
+#include "src/core/autodiff.hpp"
+#include "src/core/units.hpp"
 
 namespace panoptic::physics {
 

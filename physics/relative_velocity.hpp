@@ -14,10 +14,10 @@
 //! not. The dv_* speeds are for reports only.
 #include <cmath>
 
-#include "physics/local_gas.hpp"
+#include "disk/local_gas.hpp"
 #include "physics/particle.hpp"
 #include "physics/smooth_switches.hpp"
-#include "src/units.hpp"
+#include "src/core/units.hpp"
 
 namespace panoptic::physics {
 

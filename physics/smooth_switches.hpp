@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "src/autodiff.hpp"
+#include "src/core/autodiff.hpp"
 
 namespace panoptic::physics {
 

@@ -5,7 +5,7 @@
 //! §2). Both a double and an AD overload, so transport Jacobians stay exact.
 #include <vector>
 
-#include "src/autodiff.hpp"
+#include "src/core/autodiff.hpp"
 
 namespace panoptic {
 

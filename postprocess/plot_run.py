@@ -37,7 +37,7 @@ from postprocess import plot
 from postprocess.reader import BUILT_IN_BUDGET_TERMS, M_EARTH, MYR, load_run
 
 FORMED_FRACTION = 1e-6        # Sigma_pl > this x the largest initial Sigma_d: formed
-                              # (src/diagnostics.cpp; /summary/formed_threshold)
+                              # (src/run/diagnostics.cpp; /summary/formed_threshold)
 NO_DUST_FRACTION = 1e-6       # Sigma_d < this x initial Sigma_d: cell counted as dust-free
 ZONE_MARGIN = 4.0             # Sigma_pl figure: r range = planetesimal zone widened x4
 DEPLETION_DECADES = 4         # dust-to-gas map: colours resolve this far below the initial

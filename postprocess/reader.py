@@ -44,7 +44,7 @@ import warnings
 import h5py
 import numpy as np
 
-# The unit constants of the C++ code (src/units.hpp), for conversions of the file's units
+# The unit constants of the C++ code (src/core/units.hpp), for conversions of the file's units
 M_EARTH = 5.972e27      # [g]
 M_SUN = 1.989e33        # [g]
 AU = 1.496e13           # [cm]
@@ -332,7 +332,7 @@ def _name_list(f, group, attr):
 
 # How often HDF5 re-reads a metadata entry whose checksum fails, in SWMR reading, before
 # it gives up: its default, 100, with a back-off that doubles at each attempt, waits
-# for ever on an entry a SIGKILL tore (src/h5.hpp, kSwmrReadAttempts).
+# for ever on an entry a SIGKILL tore (src/io/h5.hpp, kSwmrReadAttempts).
 SWMR_READ_ATTEMPTS = 24
 
 

@@ -128,7 +128,7 @@ def add_diagnostics(path, ref, planetesimals="formed", killed=False, names=None)
     si = np.where(zone[None, :] & (r_c[None, :] >= 3.0), 1e-4 * sigma_d0 * growth, 0.0)
     if planetesimals == "none":
         coag, si = np.zeros_like(coag), np.zeros_like(si)
-    threshold = 1e-6 * sigma_d0.max()     # src/diagnostics.cpp kFormedFraction
+    threshold = 1e-6 * sigma_d0.max()     # src/run/diagnostics.cpp kFormedFraction
     formed = (coag + si) > threshold
     t_first = np.full((nt, n), np.nan)
     for i in range(nt):
@@ -382,7 +382,7 @@ def check_reader_timeseries_killed(tmp):
 
 def check_reader_timeseries_zero_rows(tmp):
     # rows read back as zeros amid the valid ones: what a run killed while a restart cut
-    # the file leaves behind (src/diagnostics.cpp drops them on the next restart; files
+    # the file leaves behind (src/run/diagnostics.cpp drops them on the next restart; files
     # restarted before that fix have them between valid rows)
     path = os.path.join(tmp, "zero_rows.h5")
     _, diag = write_full_run(path)

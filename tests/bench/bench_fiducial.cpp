@@ -35,12 +35,12 @@
 #include <string>
 #include <vector>
 
-#include "physics/dust_transport.hpp"
-#include "src/config.hpp"
-#include "src/cvode_integrator.hpp"
-#include "src/simulation.hpp"
-#include "src/state_layout.hpp"
-#include "src/units.hpp"
+#include "physics/modules/dust_transport.hpp"
+#include "src/scene/config.hpp"
+#include "src/solver/cvode_integrator.hpp"
+#include "src/model/simulation.hpp"
+#include "src/solver/state_layout.hpp"
+#include "src/core/units.hpp"
 
 using namespace panoptic;
 

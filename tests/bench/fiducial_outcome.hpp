@@ -7,9 +7,9 @@
 #include <span>
 #include <vector>
 
-#include "src/grid.hpp"
-#include "src/simulation.hpp"
-#include "src/units.hpp"
+#include "src/solver/grid.hpp"
+#include "src/model/simulation.hpp"
+#include "src/core/units.hpp"
 
 namespace panoptic {
 

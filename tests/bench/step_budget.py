@@ -71,7 +71,7 @@ def scene_grid(sets):
 
 
 def cell_centres(n, r_in, r_out, p):
-    """Centres (geometric mean of the faces) of src/grid.cpp's grid: faces uniform in
+    """Centres (geometric mean of the faces) of src/solver/grid.cpp's grid: faces uniform in
     ln r (p = 0) or in r^-p."""
     if p == 0.0:
         faces = [r_in * (r_out / r_in) ** (i / n) for i in range(n + 1)]

@@ -1,8 +1,9 @@
 """Shared helpers of the regression tests: run the panoptic executable on a scene with
 overrides, read its output with postprocess.reader, and report checks.
 
-Every test script is called by CTest as
-    /usr/bin/python3 tests/regression/test_X.py --exe build/panoptic --workdir DIR
+Every test script (tests/regression/<topic>/test_X.py) is called by CTest as
+    PYTHONPATH=.:tests/regression /usr/bin/python3 tests/regression/<topic>/test_X.py \
+        --exe build/panoptic --workdir DIR
 runs panoptic, compares with postprocess.analytic, prints the numbers it measured and
 exits 1 when a check fails."""
 import argparse
@@ -86,7 +87,7 @@ class Checks:
 __all__ = ["parse_args", "run", "Checks", "load_run", "REPO"]
 
 
-# The constants of spec §1.1, copied from the spec (not read from src/units.hpp)
+# The constants of spec §1.1, copied from the spec (not read from src/core/units.hpp)
 SPEC_G, SPEC_MSUN, SPEC_AU = 6.674e-8, 1.989e33, 1.496e13
 SPEC_KB, SPEC_MH = 1.3807e-16, 1.6735e-24
 

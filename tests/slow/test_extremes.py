@@ -40,7 +40,7 @@ from common import REPO, budget_error, load_run  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-AU = 1.496e13     # cm, src/units.hpp
+AU = 1.496e13     # cm, src/core/units.hpp
 MSUN = 1.989e33   # g
 BUDGET_TOL = 1e-8
 NEG_TOL = 1e-12

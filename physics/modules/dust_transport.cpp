@@ -1,0 +1,386 @@
+#include "physics/modules/dust_transport.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "disk/gas_disk.hpp"
+#include "disk/viscous_gas.hpp"
+#include "src/solver/grid.hpp"
+#include "src/core/units.hpp"
+
+namespace panoptic {
+
+DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDisk& disk,
+                             const GasColumn& gas, const ViscousStencil* viscous,
+                             const StokesModel& stokes, DustTransportOptions options,
+                             double sigma_scale, double dust_mass)
+    : layout_(layout),
+      grid_(grid),
+      gas_(gas),
+      viscous_(viscous),
+      stokes_(stokes),
+      opt_(options),
+      mass_unit_(dust_mass) {
+  // No >= 0 constraint on Sigma_d: CVODE lets a constrained component dip below zero by
+  // up to about its error weight and a restart (CvodeIntegrator::reinit) must then clip
+  // it, creating that much dust; with solver.atol_sigma = 1e-8 the LBP test's dust
+  // budget was off by 2.7e-8 (tests/bench/results/performance_log.md). The transport and
+  // the sinks are linear in Sigma_d with non-negative exact solutions, so its negative
+  // excursions are integration error held to the absolute tolerance by the error test.
+  // The decoded m and phi read Sigma_d through the codec's floor
+  // (ParticleCodec::eps_sigma), the SI triggers through a smooth positive part
+  // (Planetesimals::cell_rates); Newton iterates went negative there before, so these
+  // paths were already exercised.
+  slot_ = layout.add_cell_var(
+      {"sigma_d", "g cm^-2", "dust surface density", sigma_scale, false});
+  const double area_total =
+      units::kPi * grid.r_f(grid.n_cells()) * grid.r_f(grid.n_cells());
+  // The booked masses (this one, the sublimated ice, the pebble monitors) feed nothing
+  // back, like Sigma_pl, but stay in CVODE's error test: left out, erosion_40 on a
+  // 0.05-10 au grid took 108 295 steps with 46 134 Newton convergence failures instead
+  // of 30 648 and 6 252 (their error holds the step where Newton converges at the inner
+  // edge), and the default fiducial run 6 212 steps instead of 5 941
+  // (tests/bench/results/performance_log.md). They carry no >= 0 constraint: clipping
+  // would lose mass.
+  g_out_ = layout.add_global_var({"m_out_dust", "initial dust mass",
+                                  "dust mass that left through r_in, in units of the "
+                                  "initial dust mass on the grid",
+                                  sigma_scale * area_total / dust_mass, false});
+  transported_.push_back(slot_);
+
+  const int n = grid.n_cells();
+  two_pi_r_.resize(n);
+  two_pi_rc_.resize(n);
+  dr_.resize(n);
+  d_gas_.resize(n);
+  hr2vk_.resize(n);
+  eta_vk_static_.resize(n);
+  ln_cs_omega_.resize(n);
+  for (int i = 0; i < n; ++i)
+    ln_cs_omega_[i] = std::log(disk.c_s(grid.r_c(i)) * disk.omega_k(grid.r_c(i)));
+  for (int f = 0; f < n; ++f) {
+    const double r = grid.r_f(f);
+    const double hr = disk.h_g(r) / r;
+    two_pi_r_[f] = 2.0 * units::kPi * r;
+    two_pi_rc_[f] = 2.0 * units::kPi * grid.r_c(f);
+    dr_[f] = f > 0 ? grid.r_c(f) - grid.r_c(f - 1) : grid.r_c(0) - grid.r_f(0);
+    d_gas_[f] = disk.nu(r);  // Schmidt number 1 (spec §1.5)
+    hr2vk_[f] = hr * hr * disk.v_k(r);
+    // spec §1.4: eta = -1/2 (H/r)^2 dlnP/dlnr, the gradient from the two neighbouring
+    // centres (at the inner face: the gradient of the first interior face).
+    const int a = f > 0 ? f - 1 : 0;
+    const double dlnp =
+        (std::log(gas.static_sigma[a + 1]) - std::log(gas.static_sigma[a]) +
+         ln_cs_omega_[a + 1] - ln_cs_omega_[a]) /
+        grid.dlnr_centres(a + 1);
+    eta_vk_static_[f] = -0.5 * hr2vk_[f] * dlnp;
+  }
+  if (gas.evolves() && viscous == nullptr)
+    throw std::logic_error("DustTransport: evolving gas needs the viscous stencil");
+}
+
+void DustTransport::set_snowline(StateLayout& layout, int face, double f_ice,
+                                 int qm_slot) {
+  snow_face_ = face;
+  f_ice_ = f_ice;
+  snow_qm_slot_ = qm_slot;
+  g_sub_ =
+      add_booked_mass(layout, "m_sublimated", "ice that sublimated at the snow line");
+}
+
+int DustTransport::add_booked_mass(StateLayout& layout, const std::string& name,
+                                   const std::string& what) const {
+  // the absolute tolerance of Sigma_d over a disk of radius r_out, in these units
+  const double r_out = grid_.r_f(grid_.n_cells());
+  return layout.add_global_var(
+      {name, "initial dust mass",
+       what + ", in units of the initial dust mass on the grid",
+       layout.cell_var(slot_).abs_scale * units::kPi * r_out * r_out / mass_unit_,
+       false});
+}
+
+int DustTransport::add_monitor(StateLayout& layout, int face) {
+  if (monitor_slot_.empty()) monitor_slot_.assign(grid_.n_cells(), -1);
+  if (monitor_slot_[face] >= 0) return monitor_slot_[face];
+  monitor_slot_[face] =
+      add_booked_mass(layout, "m_through_" + std::to_string(face),
+                      "dust mass that crossed a face inward (pebble flux, spec §8)");
+  return monitor_slot_[face];
+}
+
+template <class T>
+void DustTransport::received_flows(int f, const T* flows, T* received, T& sublimated,
+                                   bool inward) const {
+  const int nt = static_cast<int>(transported_.size());
+  for (int k = 0; k < nt; ++k) received[k] = flows[k];
+  sublimated = T(0.0);
+  if (f != snow_face_ || !inward) return;
+  // spec §6.3 and §11 #18: the ice sublimates, m -> (1 - f_ice) m, phi kept
+  const double keep = 1.0 - f_ice_;
+  for (int k = 0; k < nt; ++k) received[k] = keep * flows[k];
+  for (int k = 0; k < nt; ++k)
+    if (transported_[k] ==
+        snow_qm_slot_)  // Q_m = Sigma ln(m/m_ref): ln m drops by ln keep
+      received[k] += keep * std::log(keep) * flows[0];
+  sublimated = f_ice_ * flows[0];  // < 0: mass leaving the dust
+}
+
+template <class T>
+T DustTransport::velocity(int f, const T* ya, const T* yb, const T& st) const {
+  using std::log;
+  const int a = f > 0 ? f - 1 : 0;
+  const T one_plus_st2 = 1.0 + st * st;
+  T eta_vk;
+  if (gas_.evolves()) {
+    const T dlnp = (log(gas_.sigma(a + 1, yb)) - log(gas_.sigma(a, ya)) +
+                    (ln_cs_omega_[a + 1] - ln_cs_omega_[a])) /
+                   grid_.dlnr_centres(a + 1);
+    eta_vk = -0.5 * hr2vk_[f] * dlnp;
+  } else {
+    eta_vk = T(eta_vk_static_[f]);
+  }
+  T v = -2.0 * st * eta_vk / one_plus_st2;  // spec §6.1 drift
+  if (gas_.evolves()) {
+    // v_g = F_g / Sigma_g on the face (spec §1.2, §6.1)
+    const T sg_a = gas_.sigma(a, ya), sg_b = gas_.sigma(a + 1, yb);
+    v += viscous_->face_velocity(f, sg_a, sg_b) / one_plus_st2;
+  }
+  return v;
+}
+
+template <class T>
+int DustTransport::face_flows(int f, const T* ya, const T* yb, std::span<const double> y,
+                              T* flows, double* d_far) const {
+  using std::sqrt;
+  const int nt = static_cast<int>(transported_.size());
+  // Stokes number on the face: geometric mean of the neighbours (exact for power laws on
+  // the log-spaced grid, where r_f is the geometric mean of the centres); the inner face
+  // takes the first cell's value. Tried instead (issue 7): each cell's dust leaving at
+  // the speed of its own St (flux-vector splitting, v_a^+ q_a + v_b^- q_b): fiducial
+  // planetesimal mass nearer the fine-grid value on 250 cells (12.9 vs 13.4 M_earth,
+  // 11.6-11.7 on 1000 cells) but 50% more steps and stronger travelling waves at the
+  // growth front (tests/bench/results/performance_log.md); not kept.
+  const T st =
+      f > 0 ? T(sqrt(stokes_.St(f - 1, ya) * stokes_.St(f, yb))) : stokes_.St(0, ya);
+  const T v = opt_.drift ? velocity(f, ya, yb, st) : T(0.0);
+  if (f == 0) {  // open inner boundary: outflow with the upwind state, never inflow
+    for (int k = 0; k < nt; ++k)
+      flows[k] = value_of(v) < 0.0 ? T(two_pi_rc_[0] * v * ya[transported_[k]]) : T(0.0);
+    return -1;
+  }
+  const bool from_left = value_of(v) > 0.0;
+  T diff_coef(0.0), sg_a(0.0), sg_b(0.0);
+  if (opt_.diffusion) {
+    sg_a = gas_.sigma(f - 1, ya);
+    sg_b = gas_.sigma(f, yb);
+    // -D_d Sigma_g,f / dr, D_d = D_g/(1+St^2) (spec §6.1), Sigma_g,f geometric mean
+    diff_coef = -d_gas_[f] / (1.0 + st * st) * sqrt(sg_a * sg_b) / dr_[f];
+  }
+  // Upwind advection of r Sigma (the mass per unit radius / 2 pi) rather than of Sigma:
+  // first order either way, but this keeps the steady drift profile Sigma ∝ 1/(r v)
+  // exact on the grid, so the pebble flux through a face has no truncation error there.
+  const double two_pi_r_up = 2.0 * units::kPi * grid_.r_c(from_left ? f - 1 : f);
+  // Limited scheme: the far upwind cell (behind the upwind one), if on the grid.
+  const int n = grid_.n_cells();
+  const int far = !opt_.limited || !opt_.drift ? -1
+                  : from_left                  ? (f >= 2 ? f - 2 : -1)
+                                               : (f + 1 < n ? f + 1 : -1);
+  for (int k = 0; k < nt; ++k) {
+    const int s = transported_[k];
+    T flow = two_pi_r_up * v * (from_left ? ya[s] : yb[s]);
+    if (d_far) d_far[k] = 0.0;
+    if (far >= 0) {
+      // MUSCL with the van Leer limiter on q = 2 pi r_c y (the variable the first-order
+      // scheme upwinds): face value q_up + psi(a, b)/2, a = q_up - q_far, b = q_down -
+      // q_up, psi = 2ab/(a + b) for ab > 0, else 0 (van Leer 1977; LeVeque 2002 §6.9).
+      const T q_up = two_pi_r_up * (from_left ? ya[s] : yb[s]);
+      const T q_down = 2.0 * units::kPi * grid_.r_c(from_left ? f : f - 1) *
+                       (from_left ? yb[s] : ya[s]);
+      const double q_far = two_pi_rc_[far] * y[layout_.index(far, s)];
+      const T a = q_up - q_far, b = q_down - q_up;
+      if (value_of(a) * value_of(b) > 0.0) {
+        const T ab = a + b;
+        flow += v * (a * b / ab);
+        // d(face value)/d q_far = -(1/2) d psi/d a = -b^2/(a + b)^2
+        if (d_far) {
+          const double bv = value_of(b), abv = value_of(ab);
+          d_far[k] = -value_of(v) * bv * bv / (abv * abv) * two_pi_rc_[far];
+        }
+      }
+    }
+    if (opt_.diffusion) flow += two_pi_r_[f] * diff_coef * (yb[s] / sg_b - ya[s] / sg_a);
+    flows[k] = flow;
+  }
+  return far;
+}
+
+void DustTransport::declare_pattern(PatternBuilder& p) const {
+  const int n = grid_.n_cells(), nv = layout_.n_cell_vars();
+  for (int f = 0; f < n; ++f) {
+    const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
+    std::vector<long> rows;
+    for (int s : transported_) {
+      rows.push_back(layout_.index(f, s));
+      if (f > 0) rows.push_back(layout_.index(f - 1, s));
+    }
+    if (f == 0) rows.push_back(layout_.global_index(g_out_));
+    if (f == snow_face_) rows.push_back(layout_.global_index(g_sub_));
+    if (!monitor_slot_.empty() && monitor_slot_[f] >= 0)
+      rows.push_back(layout_.global_index(monitor_slot_[f]));
+    for (long row : rows) {
+      for (int j = 0; j < nv; ++j) {
+        p.add(row, layout_.index(a, j));
+        p.add(row, layout_.index(b, j));
+      }
+      // limited scheme: the far upwind cell on either side (the drift may turn)
+      if (opt_.limited && opt_.drift && f > 0)
+        for (int far : {f - 2, f + 1})
+          if (far >= 0 && far < n)
+            for (int s : transported_) p.add(row, layout_.index(far, s));
+    }
+  }
+}
+
+void DustTransport::add_rhs(double t, std::span<const double> y,
+                            std::span<double> ydot) const {
+  add_rhs_cells(t, y, ydot, 0, grid_.n_cells());
+}
+
+// Cells [lo, hi) are fed by the faces lo..hi (face f: between cells f - 1 and f; face n,
+// the outer edge, carries nothing, spec §6.3).
+void DustTransport::add_rhs_cells(double, std::span<const double> y,
+                                  std::span<double> ydot, int lo, int hi) const {
+  const int n = grid_.n_cells(), nt = static_cast<int>(transported_.size());
+  std::array<double, kMaxVars> flows{}, received{};
+  double sublimated = 0.0;
+  for (int f = lo; f <= std::min(hi, n - 1); ++f) {
+    const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
+    face_flows(f, &y[layout_.index(a, 0)], &y[layout_.index(b, 0)], y, flows.data());
+    received_flows(f, flows.data(), received.data(), sublimated, flows[0] < 0.0);
+    for (int k = 0; k < nt; ++k) {
+      const int s = transported_[k];
+      ydot[layout_.index(f, s)] += flows[k] / grid_.area(f);
+      if (f > 0) ydot[layout_.index(f - 1, s)] -= received[k] / grid_.area(f - 1);
+    }
+    if (f == 0) ydot[layout_.global_index(g_out_)] -= flows[0] / mass_unit_;
+    if (f == snow_face_) ydot[layout_.global_index(g_sub_)] -= sublimated / mass_unit_;
+    if (!monitor_slot_.empty() && monitor_slot_[f] >= 0)
+      ydot[layout_.global_index(monitor_slot_[f])] -= flows[0] / mass_unit_;
+  }
+}
+
+void DustTransport::add_jacobian(double t, std::span<const double> y,
+                                 JacobianValues& jac) const {
+  add_jacobian_cells(t, y, jac, 0, grid_.n_cells());
+}
+
+void DustTransport::add_jacobian_cells(double, std::span<const double> y,
+                                       JacobianValues& jac, int lo, int hi) const {
+  const int n = grid_.n_cells(), nv = layout_.n_cell_vars();
+  const int nt = static_cast<int>(transported_.size()), nloc = 2 * nv;
+  std::array<AD, kMaxVars> ya, yb, flows, received;
+  std::array<double, kMaxVars> d_far{}, unit{}, rec_far{};
+  AD sublimated;
+  for (int f = lo; f <= std::min(hi, n - 1); ++f) {
+    const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
+    for (int j = 0; j < nv; ++j) {
+      ya[j] = ad_seed(y[layout_.index(a, j)], j);
+      yb[j] = ad_seed(y[layout_.index(b, j)], nv + j);
+    }
+    const int far = face_flows(f, ya.data(), yb.data(), y, flows.data(), d_far.data());
+    const bool inward = flows[0].value() < 0.0;
+    received_flows(f, flows.data(), received.data(), sublimated, inward);
+    if (far >= 0) {
+      // The far upwind cell enters only through the limiter: d flows[k]/d y[far, s_j] =
+      // delta_kj d_far[j]; what the rows receive is the same linear map of it.
+      for (int j = 0; j < nt; ++j) {
+        if (d_far[j] == 0.0) continue;
+        const long col = layout_.index(far, transported_[j]);
+        unit.fill(0.0);
+        unit[j] = d_far[j];
+        double sub = 0.0;
+        received_flows(f, unit.data(), rec_far.data(), sub, inward);
+        jac.add(layout_.index(f, transported_[j]), col, d_far[j] / grid_.area(f));
+        for (int k = 0; k < nt; ++k)
+          if (rec_far[k] != 0.0)
+            jac.add(layout_.index(f - 1, transported_[k]), col,
+                    -rec_far[k] / grid_.area(f - 1));
+        if (j == 0 && !monitor_slot_.empty() && monitor_slot_[f] >= 0)
+          jac.add(layout_.global_index(monitor_slot_[f]), col, -d_far[0] / mass_unit_);
+        if (f == snow_face_ && sub != 0.0)
+          jac.add(layout_.global_index(g_sub_), col, -sub / mass_unit_);
+      }
+    }
+    auto column = [&](int j) {
+      return j < nv ? layout_.index(a, j) : layout_.index(b, j - nv);
+    };
+    for (int k = 0; k < nt; ++k) {
+      const auto& d = flows[k].derivatives();
+      const auto& dr = received[k].derivatives();
+      const int s = transported_[k];
+      for (int j = 0; j < nloc; ++j) {
+        if (d[j] != 0.0) jac.add(layout_.index(f, s), column(j), d[j] / grid_.area(f));
+        if (f > 0 && dr[j] != 0.0)
+          jac.add(layout_.index(f - 1, s), column(j), -dr[j] / grid_.area(f - 1));
+        if (f == 0 && k == 0 && d[j] != 0.0)
+          jac.add(layout_.global_index(g_out_), column(j), -d[j] / mass_unit_);
+      }
+    }
+    if (!monitor_slot_.empty() && monitor_slot_[f] >= 0)
+      for (int j = 0; j < nloc; ++j)
+        if (flows[0].derivatives()[j] != 0.0)
+          jac.add(layout_.global_index(monitor_slot_[f]), column(j),
+                  -flows[0].derivatives()[j] / mass_unit_);
+    if (f == snow_face_)
+      for (int j = 0; j < nloc; ++j)
+        if (sublimated.derivatives()[j] != 0.0)
+          jac.add(layout_.global_index(g_sub_), column(j),
+                  -sublimated.derivatives()[j] / mass_unit_);
+  }
+}
+
+std::vector<double> DustTransport::mass_flow(std::span<const double> y) const {
+  const int n = grid_.n_cells();
+  std::vector<double> out(n + 1, 0.0);
+  std::array<double, kMaxVars> flows{};
+  for (int f = 0; f < n; ++f) {
+    const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
+    face_flows(f, &y[layout_.index(a, 0)], &y[layout_.index(b, 0)], y, flows.data());
+    out[f] = flows[0];
+  }
+  return out;
+}
+
+std::vector<double> DustTransport::face_velocity(std::span<const double> y) const {
+  using std::sqrt;
+  const int n = grid_.n_cells();
+  std::vector<double> out(n + 1, 0.0);
+  for (int f = 0; f < n; ++f) {
+    const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
+    const double* ya = &y[layout_.index(a, 0)];
+    const double* yb = &y[layout_.index(b, 0)];
+    const double st =
+        f > 0 ? sqrt(stokes_.St(a, ya) * stokes_.St(b, yb)) : stokes_.St(0, ya);
+    out[f] = opt_.drift ? velocity(f, ya, yb, st) : 0.0;
+  }
+  return out;
+}
+
+std::vector<BudgetTerm> DustTransport::budget_terms() const {
+  return {{"m_out_inner", "through r_in", "cumulative dust mass that left through r_in",
+           true, [this](std::span<const double> y) { return mass_out(y); }},
+          {"m_sublimated", "sublimated",
+           "cumulative ice that sublimated at the snow line (spec §6.3)", true,
+           [this](std::span<const double> y) { return mass_sublimated(y); }}};
+}
+
+double DustTransport::mass_out(std::span<const double> y) const {
+  return y[layout_.global_index(g_out_)] * mass_unit_;
+}
+
+double DustTransport::mass_sublimated(std::span<const double> y) const {
+  return g_sub_ < 0 ? 0.0 : y[layout_.global_index(g_sub_)] * mass_unit_;
+}
+
+}  // namespace panoptic

@@ -1,0 +1,130 @@
+#include "physics/modules/planetesimals.hpp"
+
+#include <cmath>
+#include <type_traits>
+
+#include "physics/modules/planetesimals_cell_rates.hpp"
+
+namespace panoptic {
+
+Planetesimals::Planetesimals(StateLayout& layout, const ParticleCodec& codec,
+                             const CellGas& gas, const StokesModel& stokes,
+                             const std::vector<physics::Species>& species,
+                             const physics::GrowthOptions& growth,
+                             PlanetesimalOptions options, double sigma_scale)
+    : layout_(layout),
+      codec_(codec),
+      gas_(gas),
+      stokes_(stokes),
+      species_(species),
+      growth_(growth),
+      opt_(options) {
+  // Sigma_pl only books what the channels convert (no right-hand side reads it back): a
+  // quadrature, left out of CVODE's error test (VarInfo::error_test). Its absolute
+  // tolerance used to be 1e-8 of the largest initial Sigma_d (1e4 x Sigma_d's; before
+  // that Sigma_d's own, which cost 15% of the fiducial steps); out of the error test the
+  // fiducial run takes 5-7% fewer steps, its outcomes move by < 1e-4 relative (as much
+  // as a change of round-off does) and the dust budget still closes to round-off
+  // (tests/bench/results/performance_log.md). Nor does it carry CVODE's non-negativity
+  // constraint: with no error weight, CVODE would clip any negative excursion to zero
+  // without limit (its constraint correction is accepted when small in the weighted
+  // norm), and each clip loses mass from the budget (2.4e-8 at rtol 1e-2 on fiducial
+  // before this). Sigma_pl dips below zero only where Sigma_d itself sits within its
+  // tolerance of zero.
+  if (opt_.coagulation)
+    coag_slot_ =
+        layout.add_cell_var({"sigma_pl_coag", "g cm^-2",
+                             "planetesimals formed by direct coagulation (spec §7.1)",
+                             sigma_scale, false, false});
+  if (opt_.si != StreamingInstability::kNone)
+    si_slot_ = layout.add_cell_var({"sigma_pl_si", "g cm^-2",
+                                    "planetesimals formed by the streaming instability "
+                                    "(spec §7.2)",
+                                    sigma_scale, false, false});
+}
+
+template <class T>
+void Planetesimals::cell_rates(int cell, const T* yc, T& coag, T& si) const {
+  if constexpr (!std::is_same_v<T, double>) {
+    if (gas_.evolves_slot() >= 0) {
+      cell_rates_ad_gas(cell, yc, coag, si);
+      return;
+    }
+  }
+  cell_rates_with(cell, yc, gas_.at(cell, yc), coag, si);
+}
+
+void Planetesimals::declare_pattern(PatternBuilder& p) const {
+  const int nv = layout_.n_cell_vars();
+  for (int i = 0; i < layout_.n_cells(); ++i)
+    for (int row = 0; row < nv; ++row)  // sinks of Sigma_d and of every Q; the Sigma_pl
+      for (int j = 0; j < nv; ++j) p.add(layout_.index(i, row), layout_.index(i, j));
+}
+
+namespace {
+
+//! The sinks of one cell: Sigma_d and the log-moments lose Sdot (times Q/Sigma_d), the
+//! channels gain it. Writes d(state)/dt into `out` (length nv).
+template <class T>
+void sinks(const ParticleCodec& codec, int coag_slot, int si_slot, const T* yc,
+           const T& coag, const T& si, T* out, int nv) {
+  for (int k = 0; k < nv; ++k) out[k] = T(0.0);
+  const T total = coag + si;
+  const T& sigma = yc[codec.sigma_slot];
+  const double eps2 = codec.eps_sigma * codec.eps_sigma;
+  out[codec.sigma_slot] = -total;
+  for (int q : {codec.qm_slot, codec.qphi_slot})  // spec §6.2: -(Q/Sigma_d) Sdot
+    if (q >= 0) out[q] = -(yc[q] * sigma / (sigma * sigma + eps2)) * total;
+  if (coag_slot >= 0) out[coag_slot] = coag;
+  if (si_slot >= 0) out[si_slot] = si;
+}
+
+}  // namespace
+
+void Planetesimals::add_rhs(double t, std::span<const double> y,
+                            std::span<double> ydot) const {
+  add_rhs_cells(t, y, ydot, 0, layout_.n_cells());
+}
+
+void Planetesimals::add_rhs_cells(double, std::span<const double> y,
+                                  std::span<double> ydot, int lo, int hi) const {
+  const int nv = layout_.n_cell_vars();
+  double out[kMaxLocalDerivs];
+  for (int i = lo; i < hi; ++i) {
+    const double* yc = &y[layout_.index(i, 0)];
+    double coag = 0.0, si = 0.0;
+    cell_rates(i, yc, coag, si);
+    sinks(codec_, coag_slot_, si_slot_, yc, coag, si, out, nv);
+    for (int k = 0; k < nv; ++k) ydot[layout_.index(i, k)] += out[k];
+  }
+}
+
+void Planetesimals::add_jacobian(double t, std::span<const double> y,
+                                 JacobianValues& jac) const {
+  add_jacobian_cells(t, y, jac, 0, layout_.n_cells());
+}
+
+void Planetesimals::add_jacobian_cells(double, std::span<const double> y,
+                                       JacobianValues& jac, int lo, int hi) const {
+  const int nv = layout_.n_cell_vars();
+  AD yc[kMaxLocalDerivs], out[kMaxLocalDerivs];
+  for (int i = lo; i < hi; ++i) {
+    for (int j = 0; j < nv; ++j) yc[j] = ad_seed(y[layout_.index(i, j)], j);
+    AD coag, si;
+    cell_rates(i, yc, coag, si);
+    sinks(codec_, coag_slot_, si_slot_, yc, coag, si, out, nv);
+    for (int k = 0; k < nv; ++k)
+      for (int j = 0; j < nv; ++j)
+        if (out[k].derivatives()[j] != 0.0)
+          jac.add(layout_.index(i, k), layout_.index(i, j), out[k].derivatives()[j]);
+  }
+}
+
+std::pair<double, double> Planetesimals::rates(int cell,
+                                               std::span<const double> y) const {
+  double coag = 0.0, si = 0.0;
+  cell_rates(cell, &y[layout_.index(cell, 0)], coag, si);
+  return {coag, si};
+}
+
+}  // namespace panoptic

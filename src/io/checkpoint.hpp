@@ -1,0 +1,145 @@
+#pragma once
+//! Checkpoints: the state of a run at a snapshot time, enough to continue it with
+//! `panoptic run SCENE --restart out/<run>.chk.h5` and write the same snapshots,
+//! bit for bit, as the run that was never stopped (README "Restart").
+//!
+//! A checkpoint is a small HDF5 file next to the output: `<stem>.chk.h5`, the one before
+//! kept as `<stem>.chk.prev.h5`. It holds the raw CVODE state y at t, the layout
+//! signature, the resolved scene, the snapshot index reached, the solver statistics, the
+//! output file and its run_id, the digest of every row written to the output so far
+//! (group row_digests: a restart verifies the rows it keeps against them), a checksum
+//! of all of these (FNV-1a, 64 bit) and, written last, a completeness flag. It is written
+//! to `<stem>.chk.h5.tmp`, fsynced, and renamed over `<stem>.chk.h5` (then the directory
+//! is fsynced), so that at every moment of a crash `<stem>.chk.h5` is a whole checkpoint,
+//! the new one or the old one.
+//!
+//! Bit-for-bit continuation rests on two rules (main.cpp): checkpoints are taken only at
+//! snapshot times, and with solver.reinit_at_snapshots every run reinitialises CVODE at
+//! every snapshot time, so CVODE's history (which cannot be saved) is never used across
+//! a snapshot.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "src/scene/config.hpp"
+#include "src/solver/cvode_integrator.hpp"
+#include "src/core/digest.hpp"
+#include "src/io/run_output.hpp"
+#include "src/solver/state_layout.hpp"
+
+namespace panoptic {
+
+struct Checkpoint {
+  double t = 0.0;                //!< simulated time of the state [s], a snapshot time
+  std::vector<double> y;         //!< the raw CVODE state at t (StateLayout order)
+  std::string layout_signature;  //!< StateLayout::signature() of the run
+  long n_cells = 0;              //!< radial cells
+  long snapshot_index = 0;       //!< /snapshots row of t (0 = t = 0); rows after it go
+  std::string config_toml;       //!< the resolved scene (Config::resolved_toml)
+  SolverStats stats;             //!< CVODE statistics of the run up to t
+  double wall_s = 0.0;           //!< wall time the run has used up to t [s]
+  std::string output_file;       //!< absolute path of the run's HDF5 output
+  std::string run_id;            //!< the output's root attribute run_id
+  std::string git_sha;           //!< of the program that wrote the checkpoint
+  std::string version;
+  //! Digests of the output's rows written up to the checkpoint (RunOutput::row_digests),
+  //! to verify them on restart; empty in checkpoints written before they were kept.
+  RowDigests row_digests;
+};
+
+//! The checksum of every field of a checkpoint except the strings git_sha and version:
+//! verified on load, so a flipped bit anywhere in the payload is noticed.
+std::uint64_t checkpoint_checksum(const Checkpoint& chk);
+
+//! `out/run.h5` -> `out/run.chk.h5`.
+std::filesystem::path checkpoint_path(const std::filesystem::path& output);
+//! `out/run.chk.h5` -> `out/run.chk.prev.h5` (the fallback).
+std::filesystem::path previous_checkpoint_path(const std::filesystem::path& checkpoint);
+
+//! Writes `chk` atomically to `path` (see the file comment). A checkpoint already at
+//! `path` becomes the previous one, `<stem>.chk.prev.h5`, if it is readable and whole;
+//! a damaged one is replaced without being kept, so the fallback stays good. Throws
+//! IoError naming the file; no temporary file is left behind.
+void write_checkpoint(const std::filesystem::path& path, const Checkpoint& chk);
+
+//! Whether `path`, a checkpoint path, holds a file that panoptic wrote as a checkpoint
+//! and a new run may replace: an HDF5 file with the checkpoint format attribute (any
+//! version), a damaged one (the HDF5 signature, but HDF5 cannot open it) or an empty
+//! file; false for anything else (a text file, another run's output). main.cpp.
+bool is_checkpoint_file(const std::filesystem::path& path);
+
+//! Reads and verifies a checkpoint: throws IoError saying what is wrong (missing,
+//! truncated or not HDF5, incomplete, checksum mismatch) and naming the file.
+Checkpoint read_checkpoint(const std::filesystem::path& path);
+
+//! A checkpoint to restart from, and which file it came from.
+struct RestartPoint {
+  Checkpoint chk;
+  std::filesystem::path path;  //!< the file actually read
+  std::string fallback_note;   //!< non-empty when the previous checkpoint was used: why
+};
+
+//! Reads `path`; when that fails and a previous checkpoint exists next to it
+//! (`<stem>.chk.prev.h5`), reads that one instead and says why in fallback_note. Throws
+//! IoError naming both files when neither can be used.
+RestartPoint load_restart_point(const std::filesystem::path& path);
+
+//! True for the keys a restart may change: output times and the output file, solver
+//! settings, checkpoint settings, [meta]. Everything else (grid, disk, processes,
+//! initial condition, ...) defines the state being continued.
+bool may_change_on_restart(std::string_view key);
+
+//! Throws ConfigError (exit 2) when `cfg` cannot continue `chk`: names every key whose
+//! value differs from the checkpoint's scene and may not change, with both values, or
+//! the differing layout (StateLayout::signature); says what may change and the fix.
+//! Returns the keys that differ and may, as "key = value (was value)" (for the output's
+//! record of restarts and the run's notice).
+std::vector<std::string> check_compatible(const Checkpoint& chk,
+                                          const std::filesystem::path& chk_path,
+                                          const Config& cfg, const StateLayout& layout);
+
+//! The keys whose values differ between two scenes, in schema order.
+std::vector<std::string> changed_keys(const Config& before, const Config& now);
+
+//! The snapshot times [s] of a run continued at t_restart: t_restart, then the scene's
+//! snapshot times after it. Throws ConfigError naming output.t_end_yr when the scene
+//! ends at or before t_restart.
+std::vector<double> times_after_restart(std::span<const double> output_times,
+                                        double t_restart);
+
+//! The output of the checkpoint's run, reopened to continue it: `output` (-o) when
+//! given, else the file of the recorded name next to the checkpoint, else the recorded
+//! path. Checks, before changing anything, that it is that run's file (run_id, and
+//! the time of the checkpoint's snapshot); then cuts the snapshots written after the
+//! checkpoint, stores the new resolved scene as config_toml and adds a line to the root
+//! attribute `restarts`. IoError naming the file and the fix.
+RunOutput continue_output(const RestartPoint& restart,
+                          const std::filesystem::path& output, const Config& cfg,
+                          const std::vector<std::string>& changed);
+
+//! A wall-clock duration for --max-wall: "90m", "2h", "3600s", "1h30m", "1.5h", or a
+//! plain number of seconds. Throws ConfigError saying what is accepted.
+double parse_duration(std::string_view text);
+
+//! When to checkpoint: at a snapshot, if checkpoint.every_snapshots divides its index,
+//! or if checkpoint.every_wall_s has passed since the last checkpoint (or the start).
+class CheckpointSchedule {
+ public:
+  CheckpointSchedule(double every_wall_s, long every_snapshots, double wall_now)
+      : every_wall_s_(every_wall_s),
+        every_snapshots_(every_snapshots),
+        last_wall_(wall_now) {}
+  bool due(long snapshot_index, double wall_now) const;
+  void taken(double wall_now) { last_wall_ = wall_now; }
+
+ private:
+  double every_wall_s_;
+  long every_snapshots_;
+  double last_wall_;
+};
+
+}  // namespace panoptic

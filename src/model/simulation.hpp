@@ -1,0 +1,154 @@
+#pragma once
+//! A scene assembled into something CVODE can integrate: grid, gas disk, the physics
+//! modules the scene turns on, the state layout they register, the initial state, the
+//! tolerances and the output times. This is the factory: the only place (with main.cpp)
+//! that names concrete modules.
+#include <functional>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "disk/gas_column.hpp"
+#include "disk/local_gas.hpp"
+#include "physics/optical_constants.hpp"
+#include "src/scene/config.hpp"
+#include "src/solver/cvode_integrator.hpp"
+#include "src/solver/disk_model.hpp"
+#include "src/solver/grid.hpp"
+
+namespace panoptic {
+
+class GasDisk;
+class RunOutput;
+class StokesModel;
+class DustTransport;
+class ViscousGas;
+class PorousGrowth;
+class GrowthStokes;
+class Planetesimals;
+class CellGas;
+struct ParticleCodec;
+namespace physics {
+struct Species;
+struct GrowthOptions;
+}  // namespace physics
+
+//! Cross-key checks of a loaded scene (r_in < r_out, output times, ...): throws
+//! ConfigError naming the key. Call before anything is allocated or written.
+void validate_scene(const Config& cfg);
+
+//! The monomer species "ice" or "sil" of the scene (keys material.*, spec §0).
+physics::Species species_from_config(const Config& cfg, const std::string& sp);
+//! The optical constants observe.<sp>_lambda_mm, _n, _k of species "ice" or "sil" as a
+//! table; a table the scene makes invalid fails naming the key (the one a --set
+//! changed, if any).
+physics::OpticalTable optical_table_from_config(const Config& cfg, const std::string& sp);
+//! The growth-model switches and parameters of the scene (spec §3-§5).
+physics::GrowthOptions growth_options_from_config(const Config& cfg);
+
+//! A radius where the pebble flux is recorded (spec §8): the face nearest to it.
+struct PebbleMonitor {
+  std::string name;      //!< "snow line", "r_in", "10 au"
+  double r_au = 0.0;     //!< radius of the face used [au]
+  int face = 0;          //!< face index (0 = r_in)
+  int global_slot = -1;  //!< cumulative-mass variable (m_out_dust for r_in)
+};
+
+// BudgetTerm: src/solver/physics_module.hpp (a module declares its own).
+
+class Simulation {
+ public:
+  explicit Simulation(const Config& cfg);
+  ~Simulation();
+
+  const Config& config() const { return cfg_; }
+  const Grid& grid() const { return grid_; }
+  const GasDisk& disk() const { return *disk_; }
+  DiskModel& model() { return *model_; }
+  const DiskModel& model() const { return *model_; }
+  const DustTransport& transport() const { return *transport_; }
+  //! The growth module, or null when growth is off.
+  const PorousGrowth* growth() const { return growth_; }
+  //! The local gas the particle laws see, or null when growth is off.
+  const CellGas* cell_gas() const { return cell_gas_.get(); }
+
+  std::vector<double> initial_state() const;
+  //! Where the gas evolves: sets the pressure-gradient parameter eta and the radial gas
+  //! velocity that the particle laws see (CellGas::set_pressure_and_flow) from the gas
+  //! at state y. Called where CVODE starts or restarts (every snapshot, with
+  //! solver.reinit_at_snapshots), so that a restart from a checkpoint sees the same gas
+  //! as the run never stopped. No-op for static gas or without growth.
+  void refresh_local_gas(std::span<const double> y);
+  IntegratorOptions integrator_options() const;
+  //! Snapshot times [s], t = 0 first, t_end last.
+  std::vector<double> output_times() const;
+
+  //! Writes /grid, /disk and declares the snapshot fields.
+  void prepare_output(RunOutput& out) const;
+  //! Every snapshot field at state y (cgs, as declared in prepare_output).
+  std::map<std::string, std::vector<double>> snapshot_fields(
+      std::span<const double> y) const;
+
+  double dust_mass_on_grid(std::span<const double> y) const;  //!< [g]
+  double initial_dust_mass() const { return dust_mass0_; }    //!< [g]
+  //! The dust mass of the initial profile itself on r_in..r_out, integrated exactly
+  //! (GasDisk::mass_between, split at the snow line) [g]: initial_dust_mass() is its
+  //! cell-centre quadrature, second order in the cell width. NaN for dust.init =
+  //! "gaussian_ring".
+  double profile_dust_mass() const { return profile_dust_mass_; }
+  //! Planetesimal mass per channel {coagulation, SI} [g] (0 for a channel that is off).
+  std::pair<double, double> planetesimal_mass(std::span<const double> y) const;
+  //! Sigma_pl per channel at the cell centres [g cm^-2] (empty when off).
+  std::vector<double> sigma_pl(std::span<const double> y, bool si) const;
+  const Planetesimals* planetesimals() const { return planetesimals_; }
+  const std::vector<PebbleMonitor>& pebble_monitors() const { return monitors_; }
+  //! Pebble flux (inward mass flow) through every monitor [g s^-1].
+  std::vector<double> pebble_flux(std::span<const double> y) const;
+  //! Cumulative dust mass through every monitor [g].
+  std::vector<double> pebble_mass(std::span<const double> y) const;
+  //! The terms of the dust mass budget, in the order of /timeseries/mass_budget's
+  //! columns (the error column comes after them).
+  const std::vector<BudgetTerm>& budget_terms() const { return budget_terms_; }
+  //! The mass of every budget term at state y [g].
+  std::vector<double> budget_masses(std::span<const double> y) const;
+  //! |sum of the budget terms - initial| / initial.
+  double budget_error(std::span<const double> y) const;
+  //! One-paragraph summary for `panoptic check` and the run header.
+  std::string summary() const;
+  //! The physical state of the cell of component `index` at state y, for failure
+  //! messages: "r = 3.1 au, Sigma_d = 0.2 g cm^-2, m = 5e3 g, phi = 1e-3, St = 0.02"
+  //! (empty for a global variable). The DiskModel's describer.
+  std::string describe_state(long index, std::span<const double> y) const;
+
+ private:
+  //! Throws ConfigError when the gas disk, the local gas, the initial state or its
+  //! right-hand side is not finite (and positive where it must be) in some cell.
+  void check_start_is_finite() const;
+  //! The local gas of `cell` at the initial Sigma_g with the pressure slope dlnp_dlnr
+  //! (the particle laws' reference, CellGas).
+  physics::LocalGas local_gas(int cell, double dlnp_dlnr) const;
+  Config cfg_;
+  Grid grid_;
+  std::unique_ptr<GasDisk> disk_;
+  GasColumn gas_;
+  std::unique_ptr<StokesModel> stokes_;
+  std::shared_ptr<StateLayout> layout_;
+  const DustTransport* transport_ = nullptr;
+  const ViscousGas* viscous_ = nullptr;
+  // Growth model (growth.enabled): species per cell, the local gas, the state decoder.
+  std::vector<physics::Species> species_;
+  std::unique_ptr<CellGas> cell_gas_;
+  std::unique_ptr<ParticleCodec> codec_;
+  const PorousGrowth* growth_ = nullptr;
+  const GrowthStokes* growth_stokes_ = nullptr;
+  const Planetesimals* planetesimals_ = nullptr;
+  std::vector<PebbleMonitor> monitors_;
+  std::vector<BudgetTerm> budget_terms_;
+  std::unique_ptr<DiskModel> model_;
+  std::vector<double> sigma_d0_;
+  double sigma_scale_ = 1.0, dust_mass0_ = 0.0, profile_dust_mass_ = 0.0;
+};
+
+}  // namespace panoptic

@@ -1,0 +1,17 @@
+#pragma once
+//! Values written back as TOML literals that read back exactly: the resolved scene stored
+//! in every run file (src/scene/config.cpp) and the manifest of a scan (src/scan/scan_manifest.cpp).
+#include <string>
+#include <string_view>
+
+namespace panoptic {
+
+//! Shortest text that reads back as exactly `x` (std::to_chars, locale-independent).
+std::string shortest(double x);
+//! A TOML float literal: "1" would read back as an integer, so it becomes "1.0";
+//! nan and +-inf as TOML spells them.
+std::string toml_real(double x);
+//! A TOML basic string, quoted, with every character TOML requires escaped.
+std::string toml_string(std::string_view s);
+
+}  // namespace panoptic

@@ -1,0 +1,137 @@
+#pragma once
+//! CVODE (BDF, variable order) with a sparse Jacobian in CSC form solved by KLU.
+//! RAII over SUNContext, N_Vector, SUNSparseMatrix, SUNLinearSolver and the CVODE memory;
+//! non-copyable. The Jacobian pattern comes from the DiskModel and is copied into the
+//! matrix at every call (CVODE zeroes the index arrays with the values).
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "src/solver/disk_model.hpp"
+
+namespace panoptic {
+
+struct SolverStats {
+  long nst = 0;      //!< steps
+  long nfe = 0;      //!< RHS evaluations (excluding those for difference quotients: none)
+  long nje = 0;      //!< Jacobian evaluations
+  long nsetups = 0;  //!< linear-solver set-ups (KLU factorisations)
+  long netf = 0;     //!< error-test failures
+  long nni = 0;      //!< nonlinear (Newton) iterations
+  long nncf = 0;     //!< nonlinear convergence failures
+  long nreinit = 0;  //!< re-initialisations
+  double h_last = 0.0;  //!< last step size [s]
+};
+
+//! Wall time spent in each part of the integration, for benchmarks (see
+//! CvodeIntegrator::set_profile): the model's right-hand side and Jacobian, and KLU's
+//! set-up (factorisation) and solve, timed around each call.
+struct CallbackTimes {
+  double rhs_s = 0.0, jac_s = 0.0, lsetup_s = 0.0, lsolve_s = 0.0;
+  long n_rhs = 0, n_jac = 0, n_lsetup = 0, n_lsolve = 0;
+};
+
+//! What the CVODE callbacks receive as user data.
+struct CvodeCallbackData {
+  DiskModel* model = nullptr;
+  void* newton_iterate = nullptr;  //!< N_Vector: y of the last nonlinear-solver RHS call
+  CallbackTimes* times = nullptr;  //!< accumulate callback wall times (benchmarks)
+  //! The last Jacobian's values (the pattern's CSC order), kept for the Newton matrix
+  //! I - gamma J of the steps that reuse it, and where each column's diagonal sits.
+  std::vector<double> jacobian;
+  std::vector<std::size_t> diagonal;
+};
+
+struct IntegratorOptions {
+  double rtol = 1e-6;
+  std::vector<double> atol;         //!< per component
+  std::vector<double> constraints;  //!< per component: 1 = y >= 0, 0 = none
+  long max_steps = 2000000;         //!< total step budget of the run
+  double max_dt = 0.0;              //!< largest step [s], 0 = unlimited
+  double newton_coef = 0.03;        //!< CVodeSetNonlinConvCoef (solver.newton_coef)
+  //! CVodeSetJacEvalFrequency and CVodeSetLSetupFrequency (solver.steps_per_jacobian);
+  //! 0: CVODE's own (51 and 20)
+  long steps_per_jacobian = 0;
+};
+
+//! CVODE's weighted RMS norm sqrt(sum_i (x_i w_i)^2 / n), summed in four independent
+//! partial sums (the integrator installs it as the state vector's norm).
+double weighted_rms_norm(std::span<const double> x, std::span<const double> w);
+
+class CvodeIntegrator {
+ public:
+  CvodeIntegrator(DiskModel& model, double t0, std::span<const double> y0,
+                  IntegratorOptions options);
+  ~CvodeIntegrator();
+  CvodeIntegrator(const CvodeIntegrator&) = delete;
+  CvodeIntegrator& operator=(const CvodeIntegrator&) = delete;
+
+  //! Integrates to exactly t_out (CVODE stop time). `on_step(t, nst)` is called after
+  //! every internal step. Throws SolverError with the flag name, the time, CVODE's
+  //! message, the model's message and the components with the largest weighted local
+  //! error, each with the physical state of its cell (DiskModel::describe).
+  void advance_to(double t_out, const std::function<void(double, long)>& on_step = {});
+  //! Restarts the integrator (order 1, fresh history) from (t, y), exactly as a new
+  //! integrator built at (t, y): this is what makes a run restarted from a checkpoint
+  //! bit-for-bit identical to one that reinitialises at the same time.
+  void reinit(double t, std::span<const double> y);
+  //! Adds the statistics of the part of the run before a restart, so that stats() and
+  //! the step budget solver.max_steps cover the whole run.
+  void carry_stats(const SolverStats& before);
+
+  //! Accumulate the wall time of every callback and of KLU into `times` (null: off).
+  //! For benchmarks: the clock reads cost ~50 ns per call.
+  void set_profile(CallbackTimes* times);
+  //! Current step size [s] and order (of the next step), the size and order of the last
+  //! step, and the k components with the largest weighted local error estimate of the
+  //! last step (index, |e_i w_i|), largest first: which variables limit the step
+  //! (diagnostics, benchmarks). With `all_errors`, also |e_i w_i| of every component
+  //! (CVODE's error test: their root mean square over all components <= 1).
+  struct StepInfo {
+    double h = 0.0, h_last = 0.0;
+    int order = 0, order_last = 0;
+    std::vector<std::pair<long, double>> largest_errors;
+    std::vector<double> weighted_errors;
+  };
+  StepInfo step_info(int k, bool all_errors = false) const;
+
+  double time() const { return t_; }
+  std::span<const double> state() const;
+  //! dy/dt at time() from CVODE's interpolating polynomial of the last step (valid after
+  //! a step; for dense output between steps, e.g. benchmarks coupling integrators).
+  void derivative(std::span<double> out) const;
+  //! Totals of the run: CVODE's counters (reset by every reinit) plus those saved at
+  //! each reinit and carried over from a checkpoint.
+  SolverStats stats() const;
+
+ private:
+  [[noreturn]] void fail(int flag, const std::string& what);
+  //! CVODE's own counters since the last (re)initialisation.
+  SolverStats cvode_counters() const;
+  //! Sets the negative round-off of components constrained to y >= 0 to zero in y_.
+  void clip_to_constraints();
+  //! Creates the CVODE memory, the matrix and KLU at (t0, y_) with the options.
+  void create_cvode(double t0);
+  void free_cvode();
+
+  DiskModel& model_;
+  IntegratorOptions opt_;
+  double t_ = 0.0;
+  SolverStats before_;      // totals of the segments before the last (re)initialisation
+  void* sunctx_ = nullptr;  // SUNContext (opaque pointer type)
+  void* y_ = nullptr;       // N_Vector
+  void* atol_ = nullptr;    // N_Vector
+  void* constr_ = nullptr;  // N_Vector
+  void* A_ = nullptr;       // SUNMatrix
+  void* LS_ = nullptr;      // SUNLinearSolver
+  void* cvode_ = nullptr;
+  CvodeCallbackData callback_data_;  // newton_iterate: for the report of a failure
+  std::string cvode_message_;
+  //! Steps in a row that did not advance t (below its round-off); see advance_to.
+  static constexpr int kMaxStalledSteps = 100;
+  int stalled_ = 0;
+  friend void cvode_error_handler(int, const char*, const char*, char*, void*);
+};
+
+}  // namespace panoptic

@@ -1,0 +1,146 @@
+#include "src/solver/disk_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <stdexcept>
+#include <string>
+
+namespace panoptic {
+namespace {
+
+SparsityPattern build_pattern(
+    const StateLayout& layout,
+    const std::vector<std::unique_ptr<PhysicsModule>>& modules) {
+  PatternBuilder builder(layout.size());
+  for (const auto& m : modules) m->declare_pattern(builder);
+  return SparsityPattern(builder);
+}
+
+void check_range(int lo, int hi, int n) {
+  if (lo < 0 || hi > n || lo > hi)
+    throw std::invalid_argument("DiskModel: cell range [" + std::to_string(lo) + ", " +
+                                std::to_string(hi) + ") is not within [0, " +
+                                std::to_string(n) + ")");
+}
+
+//! Index of the first non-finite entry, or -1.
+long first_non_finite(std::span<const double> v) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i])) return static_cast<long>(i);
+  return -1;
+}
+
+}  // namespace
+
+DiskModel::DiskModel(std::shared_ptr<const StateLayout> layout,
+                     std::vector<std::unique_ptr<PhysicsModule>> modules)
+    : layout_(std::move(layout)),
+      modules_(std::move(modules)),
+      pattern_(build_pattern(*layout_, modules_)) {}
+
+// The whole model is its cell-range form on every cell: that clears every row (every
+// column), and each module's add_*_cells on [0, n) is its add_rhs / add_jacobian.
+void DiskModel::rhs(double t, std::span<const double> y, std::span<double> ydot) const {
+  rhs_cells(t, y, ydot, 0, layout_->n_cells());
+}
+
+void DiskModel::jacobian(double t, std::span<const double> y,
+                         std::span<double> values) const {
+  jacobian_cells(t, y, values, 0, layout_->n_cells());
+}
+
+void DiskModel::rhs_cells(double t, std::span<const double> y, std::span<double> ydot,
+                          int lo, int hi) const {
+  // The rows the modules' range loops write besides their own (the faces' other cells)
+  // are cleared too; a module without a range loop (the default) writes every row, and
+  // the rows outside [lo - 1, hi + 1) then hold sums of earlier calls: undefined.
+  const int n = layout_->n_cells();
+  check_range(lo, hi, n);
+  std::fill(ydot.begin() + layout_->index(std::max(0, lo - 1), 0),
+            ydot.begin() + layout_->index(std::min(n, hi + 1), 0), 0.0);
+  std::fill(ydot.begin() + layout_->index(n, 0), ydot.end(), 0.0);  // the globals
+  for (const auto& m : modules_)
+    if (!active_ || active_(m->name())) m->add_rhs_cells(t, y, ydot, lo, hi);
+}
+
+void DiskModel::jacobian_cells(double t, std::span<const double> y,
+                               std::span<double> values, int lo, int hi) const {
+  // The modules write the columns of the cells lo - 2 .. hi + 1 (a face reads two cells
+  // each side) and of the globals: those are cleared, in the pattern's column order.
+  const int n = layout_->n_cells();
+  check_range(lo, hi, n);
+  const auto cp = pattern_.col_ptr();
+  std::fill(values.begin() + cp[layout_->index(std::max(0, lo - 2), 0)],
+            values.begin() + cp[layout_->index(std::min(n, hi + 2), 0)], 0.0);
+  std::fill(values.begin() + cp[layout_->index(n, 0)], values.end(), 0.0);
+  JacobianValues jac(pattern_, values);
+  for (const auto& m : modules_) {
+    if (active_ && !active_(m->name())) continue;
+    try {
+      m->add_jacobian_cells(t, y, jac, lo, hi);
+    } catch (const PatternMiss& e) {
+      throw std::logic_error(
+          "module " + std::string(m->name()) + " wrote the Jacobian entry d(" +
+          layout_->describe(e.row) + ")/d(" + layout_->describe(e.col) +
+          "), which its declare_pattern did not declare: add it there (README, Adding a "
+          "physical process)");
+    }
+  }
+}
+
+std::string DiskModel::describe(long index, std::span<const double> y) const noexcept {
+  try {
+    std::string s = layout_->describe(index);
+    if (describer_) {
+      const std::string state = describer_(index, y);
+      if (!state.empty()) s += " (" + state + ")";
+    }
+    return s;
+  } catch (...) {
+    return "component " + std::to_string(index);
+  }
+}
+
+int DiskModel::rhs_nothrow(double t, std::span<const double> y,
+                           std::span<double> ydot) noexcept {
+  try {
+    rhs(t, y, ydot);
+    if (const long i = first_non_finite(ydot); i >= 0) {
+      last_error_ = "non-finite right-hand side for " + describe(i, y);
+      return 1;
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    last_error_ = std::string("right-hand side: ") + e.what();
+  } catch (...) {
+    last_error_ = "right-hand side: unknown exception";
+  }
+  return -1;
+}
+
+int DiskModel::jacobian_nothrow(double t, std::span<const double> y,
+                                std::span<double> values) noexcept {
+  try {
+    jacobian(t, y, values);
+    if (const long k = first_non_finite(values); k >= 0) {
+      // the row of value k: the column is the one whose range holds k
+      const auto cols = pattern_.col_ptr();
+      const long col = static_cast<long>(std::upper_bound(cols.begin(), cols.end(), k) -
+                                         cols.begin()) -
+                       1;
+      last_error_ = "non-finite Jacobian entry d(" +
+                    describe(static_cast<long>(pattern_.row_index()[k]), y) + ")/d(" +
+                    layout_->describe(col) + ")";
+      return 1;
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    last_error_ = std::string("Jacobian: ") + e.what();
+  } catch (...) {
+    last_error_ = "Jacobian: unknown exception";
+  }
+  return -1;
+}
+
+}  // namespace panoptic

@@ -1,0 +1,72 @@
+#pragma once
+//! A physical process as seen by the integrator (Cantera getJacobianElements; DustPy's
+//! J_hyd + J_coag + ...). Modules *add* their terms to ydot and J, never overwrite, so a
+//! scene's model is the sum of the modules it turns on and a process that is off costs
+//! nothing.
+//!
+//! NEW_PROCESS: derive from PhysicsModule, register its variables with the StateLayout in
+//! its constructor, and build it in Simulation (src/model/simulation.cpp) when the scene turns
+//! it on (README "Adding a physical process").
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "src/solver/sparsity.hpp"
+
+namespace panoptic {
+
+//! One term of the dust mass budget (spec §8): a place where part of the initial dust
+//! mass is now (on the grid, in planetesimals, through r_in, sublimated, ...). The terms
+//! sum to the initial dust mass up to the integration error, so a process that removes
+//! dust from Sigma_d books what it removes and declares a term (PhysicsModule::
+//! budget_terms; the built-in ones in Simulation's constructor): the term is then
+//! written to /snapshots/<name> (when `in_snapshots`), to a column of
+//! /timeseries/mass_budget, and counted in the budget error, the printed budget and
+//! /summary/budget_error.
+struct BudgetTerm {
+  std::string name;          //!< dataset and column name ("m_out_inner")
+  std::string label;         //!< short text for the printed budget ("through r_in")
+  std::string description;   //!< dataset description
+  bool in_snapshots = true;  //!< false: a column of the time series only (process off)
+  std::function<double(std::span<const double>)> mass;  //!< [g] at state y
+};
+
+class PhysicsModule {
+ public:
+  virtual ~PhysicsModule() = default;
+  virtual std::string_view name() const = 0;
+  //! Declare every (row, col) this module may ever write. Called once, at set-up.
+  virtual void declare_pattern(PatternBuilder& pattern) const = 0;
+  //! ydot += F(t, y).
+  virtual void add_rhs(double t, std::span<const double> y,
+                       std::span<double> ydot) const = 0;
+  //! J += dF/dy (t, y), exact.
+  virtual void add_jacobian(double t, std::span<const double> y,
+                            JacobianValues& jac) const = 0;
+
+  //! add_rhs() on the rows of the cells [lo, hi) and of the global variables fed through
+  //! the faces lo..hi; rows of other cells may be written too (the default computes them
+  //! all). For integrators that step part of the grid on its own (block-local time
+  //! stepping, tests/bench/bench_lts.cpp); a module with local or face-by-face terms
+  //! overrides it to skip the rest.
+  virtual void add_rhs_cells(double t, std::span<const double> y, std::span<double> ydot,
+                             int lo, int hi) const {
+    (void)lo, (void)hi;
+    add_rhs(t, y, ydot);
+  }
+  //! The mass-budget terms this module books (a sink of dust: what it has removed, at
+  //! state y, in g), after the built-in ones in Simulation::budget_terms(); none by
+  //! default. The module is built only when its process is on, so its terms are written
+  //! to the snapshots (in_snapshots = true).
+  virtual std::vector<BudgetTerm> budget_terms() const { return {}; }
+  //! add_jacobian() on the same rows as add_rhs_cells().
+  virtual void add_jacobian_cells(double t, std::span<const double> y,
+                                  JacobianValues& jac, int lo, int hi) const {
+    (void)lo, (void)hi;
+    add_jacobian(t, y, jac);
+  }
+};
+
+}  // namespace panoptic
