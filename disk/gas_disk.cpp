@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "src/core/units.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/grid.hpp"
-#include "src/core/units.hpp"
 
 namespace panoptic {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "disk/gas_disk.hpp"
-#include "src/solver/grid.hpp"
 #include "src/core/units.hpp"
+#include "src/solver/grid.hpp"
 
 namespace panoptic {
 

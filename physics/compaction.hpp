@@ -7,9 +7,9 @@
 //! d ln phi/dt. Templates on T and the gas's G (rules: physics/particle.hpp).
 #include <cmath>
 
+#include "disk/local_gas.hpp"
 #include "physics/drag.hpp"
 #include "physics/growth_options.hpp"
-#include "disk/local_gas.hpp"
 #include "physics/smooth_switches.hpp"
 #include "src/core/units.hpp"
 

@@ -6,9 +6,9 @@
 //! projectiles). Templates on T and the gas's G (rules: physics/particle.hpp).
 #include <cmath>
 
+#include "disk/local_gas.hpp"
 #include "physics/drag.hpp"
 #include "physics/growth_options.hpp"
-#include "disk/local_gas.hpp"
 #include "physics/particle.hpp"
 #include "physics/relative_velocity.hpp"
 #include "physics/smooth_switches.hpp"

@@ -2,8 +2,8 @@
 //! Local growth and filling-factor rates of the mass-dominating particle of one cell: the
 //! semi-analytical porous coagulation model (spec §4, §5; Krijt et al. 2016 built on
 //! Okuzumi et al. 2012, Kataoka et al. 2013, Krijt et al. 2015). Pure functions,
-//! templated on the scalar type so that the cell Jacobian is exact (src/core/autodiff.hpp).
-//! This file combines the processes, each in its own file:
+//! templated on the scalar type so that the cell Jacobian is exact
+//! (src/core/autodiff.hpp). This file combines the processes, each in its own file:
 //!
 //!   dm/dt = f_grow 2 sqrt(pi) a^2 dv Sigma_d / h_d  (spec §4.1; dv:
 //!   relative_velocity.hpp)
@@ -12,12 +12,12 @@
 //!           (s, phi_floor = max(phi_gas, phi_grav), t_relax: compaction.hpp, §4.2-§4.4)
 #include <cmath>
 
+#include "disk/local_gas.hpp"
 #include "physics/compaction.hpp"
 #include "physics/drag.hpp"
 #include "physics/erosion.hpp"
 #include "physics/fragmentation.hpp"
 #include "physics/growth_options.hpp"
-#include "disk/local_gas.hpp"
 #include "physics/particle.hpp"
 #include "physics/relative_velocity.hpp"
 #include "src/core/autodiff.hpp"

@@ -22,7 +22,8 @@ MieEfficiencies mie_series(cplx m, double x) {
   // starts at max(N, |y|) + 15; for weakly absorbing spheres that is too close to the
   // turning point n ~ |y| (width ~ |y|^(1/3)) and the error reaches the result (MIEV0
   // case 10, m = 1.33 + 1e-5 i, x = 100: Q_sca off by 5e-5; case 11 by 4e-3). 8 |y|^(1/3)
-  // more terms make it converge (4 already suffice there; tests/unit/physics/test_mie.cpp).
+  // more terms make it converge (4 already suffice there;
+  // tests/unit/physics/test_mie.cpp).
   const int n_mx = static_cast<int>(std::max<double>(n_stop, std::abs(y)) +
                                     8.0 * std::cbrt(std::abs(y))) +
                    15;

@@ -25,19 +25,19 @@
 #include <vector>
 
 #include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
-#include "src/io/checkpoint.hpp"
-#include "src/scene/config.hpp"
-#include "src/solver/cvode_integrator.hpp"
-#include "src/run/diagnostics.hpp"
-#include "src/io/durable_file.hpp"
 #include "src/core/error.hpp"
-#include "src/observe/observe.hpp"
-#include "src/scene/presets.hpp"
+#include "src/core/units.hpp"
+#include "src/io/checkpoint.hpp"
+#include "src/io/durable_file.hpp"
 #include "src/io/run_output.hpp"
-#include "src/scan/scan.hpp"
 #include "src/model/simulation.hpp"
 #include "src/model/track.hpp"
-#include "src/core/units.hpp"
+#include "src/observe/observe.hpp"
+#include "src/run/diagnostics.hpp"
+#include "src/scan/scan.hpp"
+#include "src/scene/config.hpp"
+#include "src/scene/presets.hpp"
+#include "src/solver/cvode_integrator.hpp"
 
 namespace fs = std::filesystem;
 using namespace panoptic;
@@ -591,7 +591,8 @@ int run_command_line(int argc, char** argv) {
                    "continue the run of this checkpoint (<output>.chk.h5); the output "
                    "file is continued")
       ->excludes(overwrite_opt);
-  // accuracy presets (src/scene/presets.hpp): overrides applied before --set, so --set wins
+  // accuracy presets (src/scene/presets.hpp): overrides applied before --set, so --set
+  // wins
   bool fast = false, accurate = false;
   auto* fast_opt = run_cmd->add_flag(
       "--fast", fast,

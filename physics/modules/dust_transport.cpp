@@ -6,8 +6,8 @@
 
 #include "disk/gas_disk.hpp"
 #include "disk/viscous_gas.hpp"
-#include "src/solver/grid.hpp"
 #include "src/core/units.hpp"
+#include "src/solver/grid.hpp"
 
 namespace panoptic {
 

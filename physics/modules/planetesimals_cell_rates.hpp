@@ -1,8 +1,9 @@
 #pragma once
 //! The conversion rates of one cell (spec §7), as a template on the scalar type T and
 //! the gas type G: included by physics/modules/planetesimals.cpp (G = double) and by
-//! physics/modules/evolving_gas_ad.cpp (G = AD, the Jacobian on evolving gas), which are kept
-//! apart so that the static-gas code keeps its inlining (physics/modules/evolving_gas_ad.hpp).
+//! physics/modules/evolving_gas_ad.cpp (G = AD, the Jacobian on evolving gas), which are
+//! kept apart so that the static-gas code keeps its inlining
+//! (physics/modules/evolving_gas_ad.hpp).
 #include <cmath>
 #include <type_traits>
 

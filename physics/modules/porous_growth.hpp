@@ -155,8 +155,8 @@ class PorousGrowth : public PhysicsModule {
   //! The rates of cell `cell` at state y, for output and tests.
   physics::ParticleRates<double> rates(int cell, std::span<const double> y) const;
   //! The same from the cell state `yc`, memoised by its values: within one RHS the
-  //! growth sources and the coagulation channel (physics/modules/planetesimals.cpp) ask for the
-  //! rates of the same state, which cost as much as the rest of the cell's RHS.
+  //! growth sources and the coagulation channel (physics/modules/planetesimals.cpp) ask
+  //! for the rates of the same state, which cost as much as the rest of the cell's RHS.
   const physics::ParticleRates<double>& cell_rates(int cell, const double* yc) const;
   //! d ln m/dt and d ln phi/dt as AD for the Jacobians, memoised the same way: their
   //! gradients with respect to (Sigma_d, Q_m, Q_phi) are computed once per cell state

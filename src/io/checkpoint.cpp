@@ -8,10 +8,10 @@
 #include <cstring>
 
 #include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
-#include "src/io/durable_file.hpp"
 #include "src/core/error.hpp"
-#include "src/io/h5.hpp"
 #include "src/core/units.hpp"
+#include "src/io/durable_file.hpp"
+#include "src/io/h5.hpp"
 
 namespace fs = std::filesystem;
 

@@ -25,10 +25,10 @@
 #include <string_view>
 #include <vector>
 
-#include "src/scene/config.hpp"
-#include "src/solver/cvode_integrator.hpp"
 #include "src/core/digest.hpp"
 #include "src/io/run_output.hpp"
+#include "src/scene/config.hpp"
+#include "src/solver/cvode_integrator.hpp"
 #include "src/solver/state_layout.hpp"
 
 namespace panoptic {

@@ -12,9 +12,9 @@
 #include <random>
 #include <string_view>
 
-#include "src/solver/cvode_integrator.hpp"
-#include "src/io/durable_file.hpp"
 #include "src/core/error.hpp"
+#include "src/io/durable_file.hpp"
+#include "src/solver/cvode_integrator.hpp"
 
 namespace panoptic {
 namespace {

@@ -9,17 +9,17 @@
 #include <stdexcept>
 
 #include "disk/gas_disk.hpp"
+#include "disk/local_gas.hpp"
 #include "disk/viscous_gas.hpp"
 #include "physics/contact_mechanics.hpp"
 #include "physics/modules/dust_transport.hpp"
-#include "disk/local_gas.hpp"
-#include "physics/optical_constants.hpp"
 #include "physics/modules/planetesimals.hpp"
 #include "physics/modules/porous_growth.hpp"
+#include "physics/optical_constants.hpp"
 #include "physics/stokes_model.hpp"
 #include "src/core/error.hpp"
-#include "src/io/run_output.hpp"
 #include "src/core/units.hpp"
+#include "src/io/run_output.hpp"
 
 namespace panoptic {
 

@@ -5,12 +5,12 @@
 #include <sstream>
 
 #include "disk/gas_disk.hpp"
-#include "physics/growth_rates.hpp"
 #include "disk/local_gas.hpp"
-#include "src/solver/cvode_integrator.hpp"
+#include "physics/growth_rates.hpp"
 #include "src/core/error.hpp"
-#include "src/model/simulation.hpp"
 #include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
+#include "src/solver/cvode_integrator.hpp"
 
 namespace panoptic {
 namespace {

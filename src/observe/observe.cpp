@@ -12,14 +12,14 @@
 #include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
 #include "physics/mie.hpp"
 #include "physics/optical_constants.hpp"
-#include "src/io/checkpoint.hpp"
-#include "src/scene/config.hpp"
-#include "src/io/durable_file.hpp"
 #include "src/core/error.hpp"
-#include "src/io/h5.hpp"
-#include "src/observe/observe_image.hpp"
-#include "src/model/simulation.hpp"
 #include "src/core/units.hpp"
+#include "src/io/checkpoint.hpp"
+#include "src/io/durable_file.hpp"
+#include "src/io/h5.hpp"
+#include "src/model/simulation.hpp"
+#include "src/observe/observe_image.hpp"
+#include "src/scene/config.hpp"
 
 namespace fs = std::filesystem;
 

@@ -8,9 +8,9 @@
 //! ABSORPTION ONLY: scattering is neglected (no albedo reduction of the emission, no
 //! scattered light), and the disk is a geometrically thin slab seen at inclination i:
 //!   I_nu(r) = B_nu(T) (1 - exp(-tau_nu / cos i)),  tau_nu = Sigma_d kappa_abs.
-//! The image is projected, convolved with the beam by FFT (src/observe/observe_image.hpp) and
-//! averaged over deprojected annuli; the spectral index is taken between every pair of
-//! wavelengths. Output layout: README "Synthetic observations".
+//! The image is projected, convolved with the beam by FFT (src/observe/observe_image.hpp)
+//! and averaged over deprojected annuli; the spectral index is taken between every pair
+//! of wavelengths. Output layout: README "Synthetic observations".
 #include <string>
 #include <vector>
 

@@ -5,10 +5,10 @@
 #include <limits>
 #include <sstream>
 
+#include "src/core/units.hpp"
 #include "src/io/h5.hpp"
 #include "src/io/run_output.hpp"
 #include "src/model/simulation.hpp"
-#include "src/core/units.hpp"
 
 namespace panoptic {
 

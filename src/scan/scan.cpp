@@ -1,6 +1,6 @@
-// `panoptic scan` (src/scan/scan.hpp): manifest, scheduling of the runs as child processes
-// over local worker slots and, when built with MPI and launched by mpirun, over MPI
-// ranks; the summary table at the end.
+// `panoptic scan` (src/scan/scan.hpp): manifest, scheduling of the runs as child
+// processes over local worker slots and, when built with MPI and launched by mpirun, over
+// MPI ranks; the summary table at the end.
 //
 // MPI protocol (dynamic distribution, so runs of uneven cost balance): rank 0 expands and
 // validates the scan, writes the manifest and sends every worker rank GO (or the error
@@ -30,8 +30,8 @@
 #include <sstream>
 #include <thread>
 
-#include "src/io/checkpoint.hpp"
 #include "src/core/error.hpp"
+#include "src/io/checkpoint.hpp"
 #include "src/scan/scan_exec.hpp"
 #include "src/scan/scan_manifest.hpp"
 #include "src/scan/scan_summary.hpp"

@@ -16,8 +16,8 @@
 #include <limits>
 #include <sstream>
 
-#include "src/io/checkpoint.hpp"
 #include "src/core/error.hpp"
+#include "src/io/checkpoint.hpp"
 #include "src/io/h5.hpp"
 
 namespace panoptic {

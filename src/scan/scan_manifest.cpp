@@ -1,5 +1,5 @@
-// Scan files and their expansion into a manifest (src/scan/scan_manifest.hpp). The scan file
-// is untrusted input like a scene: it is parsed through the guarded TOML parser, and
+// Scan files and their expansion into a manifest (src/scan/scan_manifest.hpp). The scan
+// file is untrusted input like a scene: it is parsed through the guarded TOML parser, and
 // every error names file:line:col, the key, the value and the fix.
 #include "src/scan/scan_manifest.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 //! A scene: one TOML file plus command-line overrides, validated against the key schema
-//! (src/scene/scene_keys.cpp) before anything is allocated. Values stay in the units of their
-//! key names (au, yr, M_sun, ...); callers convert to cgs with src/core/units.hpp.
+//! (src/scene/scene_keys.cpp) before anything is allocated. Values stay in the units of
+//! their key names (au, yr, M_sun, ...); callers convert to cgs with src/core/units.hpp.
 //!
 //! Style: Athena++ GetOrAdd + dump of the resolved table; Cantera InputFileError messages
 //! ("file:line:col: key = value: constraint; fix").

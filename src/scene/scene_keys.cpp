@@ -91,9 +91,9 @@ KeySpec real_table(std::string key, std::string def, std::string unit, std::stri
 }
 
 // When a run reads a key (KeySpec::used_when), taken from the code that reads it
-// (src/model/simulation.cpp, disk/gas_disk.cpp, physics/growth_rates.hpp and the processes
-// it combines, physics/modules/planetesimals_cell_rates.hpp, src/observe/observe.cpp). Values are TOML
-// literals.
+// (src/model/simulation.cpp, disk/gas_disk.cpp, physics/growth_rates.hpp and the
+// processes it combines, physics/modules/planetesimals_cell_rates.hpp,
+// src/observe/observe.cpp). Values are TOML literals.
 UsedWhen is(std::string key, std::vector<std::string> values) {
   return UsedWhen{std::move(key), std::move(values)};
 }

@@ -1,6 +1,7 @@
 #pragma once
 //! Values written back as TOML literals that read back exactly: the resolved scene stored
-//! in every run file (src/scene/config.cpp) and the manifest of a scan (src/scan/scan_manifest.cpp).
+//! in every run file (src/scene/config.cpp) and the manifest of a scan
+//! (src/scan/scan_manifest.cpp).
 #include <string>
 #include <string_view>
 

@@ -5,8 +5,8 @@
 //! nothing.
 //!
 //! NEW_PROCESS: derive from PhysicsModule, register its variables with the StateLayout in
-//! its constructor, and build it in Simulation (src/model/simulation.cpp) when the scene turns
-//! it on (README "Adding a physical process").
+//! its constructor, and build it in Simulation (src/model/simulation.cpp) when the scene
+//! turns it on (README "Adding a physical process").
 #include <functional>
 #include <span>
 #include <string>

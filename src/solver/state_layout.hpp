@@ -19,8 +19,8 @@ struct VarInfo {
   //! as Sigma_pl): it is integrated with the system but left out of CVODE's error test
   //! and Newton convergence test, as CVODES does with quadrature variables by default
   //! (errconQ = false). Its accuracy then follows that of the variables it integrates.
-  //! (The booked global masses stay in the test: physics/modules/dust_transport.cpp says why.)
-  //! Such a variable must not be `nonnegative`: without an error weight CVODE's
+  //! (The booked global masses stay in the test: physics/modules/dust_transport.cpp says
+  //! why.) Such a variable must not be `nonnegative`: without an error weight CVODE's
   //! constraint correction would clip it to zero at any size, losing the clipped amount
   //! from the budget.
   bool error_test = true;

@@ -36,11 +36,11 @@
 #include <vector>
 
 #include "physics/modules/dust_transport.hpp"
+#include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
-#include "src/model/simulation.hpp"
 #include "src/solver/state_layout.hpp"
-#include "src/core/units.hpp"
 
 using namespace panoptic;
 

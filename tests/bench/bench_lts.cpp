@@ -84,11 +84,11 @@
 #include <vector>
 
 #include "physics/modules/dust_transport.hpp"
+#include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
 #include "src/solver/grid.hpp"
-#include "src/model/simulation.hpp"
-#include "src/core/units.hpp"
 #include "tests/bench/fiducial_outcome.hpp"
 
 using namespace panoptic;
@@ -484,10 +484,11 @@ Coupler::Coupler(Simulation& sim, int block_size, int overlap, const Coupling& h
     std::vector<double> yb;
     for (long k : b.full_index) yb.push_back(y0[k]);
     // The booked face quantities are in the error test, as the product's booked global
-    // masses are (physics/modules/dust_transport.cpp): out of it, CVODE's Newton iteration stops
-    // before they converge (its corrections are scaled when gamma has changed since the
-    // last set-up), and a booking then misses ~0.3 % of what its rows integrate. atol:
-    // that of the variable in the face's inner cell, times the cell's area.
+    // masses are (physics/modules/dust_transport.cpp): out of it, CVODE's Newton
+    // iteration stops before they converge (its corrections are scaled when gamma has
+    // changed since the last set-up), and a booking then misses ~0.3 % of what its rows
+    // integrate. atol: that of the variable in the face's inner cell, times the cell's
+    // area.
     const auto book_atol = [&](int face, std::size_t k) {
       const long row = layout_.index(face - 1, tslots_[k]);
       return full_opt.atol[row] * tol_scale * sim.grid().area(face - 1);

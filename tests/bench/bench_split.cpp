@@ -21,11 +21,11 @@
 #include <string_view>
 #include <vector>
 
+#include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
 #include "src/solver/grid.hpp"
-#include "src/model/simulation.hpp"
-#include "src/core/units.hpp"
 #include "tests/bench/fiducial_outcome.hpp"
 
 using namespace panoptic;

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
-#include "src/model/simulation.hpp"
-#include "src/core/units.hpp"
 
 using namespace panoptic;
 

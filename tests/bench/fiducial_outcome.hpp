@@ -7,9 +7,9 @@
 #include <span>
 #include <vector>
 
-#include "src/solver/grid.hpp"
-#include "src/model/simulation.hpp"
 #include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
+#include "src/solver/grid.hpp"
 
 namespace panoptic {
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "disk/gas_disk.hpp"
-#include "src/solver/grid.hpp"
 #include "src/core/units.hpp"
+#include "src/solver/grid.hpp"
 
 using namespace panoptic;
 using units::kAu;

@@ -13,10 +13,10 @@
 
 #include "disk/gas_disk.hpp"
 #include "physics/modules/porous_growth.hpp"
+#include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/disk_model.hpp"
-#include "src/model/simulation.hpp"
-#include "src/core/units.hpp"
 
 namespace panoptic {
 namespace {

@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "src/core/error.hpp"
+#include "src/core/units.hpp"
 #include "src/io/checkpoint.hpp"
 #include "src/solver/cvode_integrator.hpp"
 #include "src/solver/disk_model.hpp"
-#include "src/core/error.hpp"
-#include "src/core/units.hpp"
 #include "tests/unit/support/config_error.hpp"
 #include "tests/unit/support/robertson.hpp"
 

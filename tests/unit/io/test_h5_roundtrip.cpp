@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "src/solver/cvode_integrator.hpp"
 #include "src/core/error.hpp"
 #include "src/io/h5.hpp"
 #include "src/io/run_output.hpp"
+#include "src/solver/cvode_integrator.hpp"
 
 using namespace panoptic;
 namespace fs = std::filesystem;

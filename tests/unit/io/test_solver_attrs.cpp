@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <string>
 
-#include "src/solver/cvode_integrator.hpp"
 #include "src/io/h5.hpp"
 #include "src/io/run_output.hpp"
+#include "src/solver/cvode_integrator.hpp"
 
 namespace panoptic {
 namespace {

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "physics/modules/dust_transport.hpp"
-#include "src/scene/config.hpp"
-#include "src/model/simulation.hpp"
 #include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
+#include "src/scene/config.hpp"
 #include "tests/unit/support/evolved_state.hpp"
 
 namespace panoptic {
@@ -167,9 +167,9 @@ TEST(SinksKeepTheParticles, PlanetesimalSinksRemoveTheLogMomentsWithTheDust) {
           std::abs(ydot[L.index(i, q)] - expected) / std::max(std::abs(expected), 1e-300);
       worst = std::max(worst, err);
       // The sink takes Q/Sigma_d through the decoder's regularised ratio Q Sigma /
-      // (Sigma^2 + eps^2) (physics/modules/planetesimals.cpp), (eps/Sigma)^2 from Q/Sigma: 1.9e-7
-      // in the thinnest converting cell here. A sink that forgets the moments is off by
-      // 1, one with another factor by O(1).
+      // (Sigma^2 + eps^2) (physics/modules/planetesimals.cpp), (eps/Sigma)^2 from
+      // Q/Sigma: 1.9e-7 in the thinnest converting cell here. A sink that forgets the
+      // moments is off by 1, one with another factor by O(1).
       EXPECT_LT(err, 1e-5) << "cell " << i << ", " << L.cell_var(q).name;
     }
   }

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "physics/modules/dust_transport.hpp"
-#include "src/scene/config.hpp"
 #include "src/model/simulation.hpp"
+#include "src/scene/config.hpp"
 
 namespace panoptic {
 namespace {

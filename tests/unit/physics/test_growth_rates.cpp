@@ -19,16 +19,16 @@
 #include <string>
 #include <vector>
 
+#include "disk/local_gas.hpp"
 #include "physics/contact_mechanics.hpp"
 #include "physics/drag.hpp"
 #include "physics/growth_rates.hpp"
-#include "disk/local_gas.hpp"
 #include "physics/particle.hpp"
 #include "physics/relative_velocity.hpp"
 #include "src/core/autodiff.hpp"
-#include "src/scene/config.hpp"
-#include "src/model/simulation.hpp"
 #include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
+#include "src/scene/config.hpp"
 #include "tests/unit/support/mmsn_gas.hpp"
 
 namespace {
@@ -712,8 +712,8 @@ TEST(GrowthCompactionFloor, LittleLeakAboveFloorWhereGrowthIsSlow) {
   // A constructed state: particle_rates takes St as an argument, and the St passed is
   // that of (1e4 g, phi = 1e-6), a slowly growing particle; the self-consistent particle
   // (1e4 g, 1.08 floor) has St = 4.87e-4 and t_grow Omega = 27, where the cap does not
-  // bind (tests/regression/physics/test_reference_numbers.py). The algebra of the push against
-  // the decline is what is tested, at t_grow Omega ~ 400.
+  // bind (tests/regression/physics/test_reference_numbers.py). The algebra of the push
+  // against the decline is what is tested, at t_grow Omega ~ 400.
   const double floor = 0.00013300598760858056, phi = 1.08 * floor;  // python, as above
   const Push p = compaction_push(1e4, phi, 7.618670735964675e-05, floors(true, false));
   const double t_grow_omega = kOmega / p.dlnm_dt;

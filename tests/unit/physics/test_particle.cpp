@@ -10,8 +10,8 @@
 #include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
-#include "physics/drag.hpp"
 #include "disk/local_gas.hpp"
+#include "physics/drag.hpp"
 #include "physics/particle.hpp"
 #include "src/core/units.hpp"
 #include "tests/unit/support/mmsn_gas.hpp"

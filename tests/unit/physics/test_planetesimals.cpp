@@ -13,10 +13,10 @@
 #include "physics/contact_mechanics.hpp"
 #include "physics/modules/planetesimals.hpp"
 #include "physics/stokes_model.hpp"
-#include "src/scene/config.hpp"
-#include "src/model/simulation.hpp"
-#include "src/solver/state_layout.hpp"
 #include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
+#include "src/scene/config.hpp"
+#include "src/solver/state_layout.hpp"
 #include "tests/unit/support/mmsn_gas.hpp"
 
 using panoptic::zcrit_lim25;
@@ -102,13 +102,13 @@ TEST(Planetesimals, S18RateIsZetaSigmaStOmegaTimesTheTrigger) {
 }
 
 // The direct-coagulation channel (spec §7.1) and the d16 trigger (spec §7.2; Drazkowska
-// et al. 2016) of Planetesimals::cell_rates_with (physics/modules/planetesimals_cell_rates.hpp),
-// on one cell at 5 au of the MMSN gas of spec §1 (tests/unit/support/mmsn_gas.hpp, written out
-// from the spec formulas), with the Stokes number prescribed so that the switches can be
-// put exactly at their midpoints. The smooth steps are logistic in ln x (spec §6.4):
-// step(x; x0) = 1/(1 + (x0/x)^k), k = ln 19/(w ln 10), w = 0.1 dex: by hand, 1/2 at
-// x = x0, 19/20 = 0.95 at x0 10^w, 1/20 at x0 10^-w, and 1/(1 + 19^-10) = 1 - 1.6e-13 at
-// 10 x0 (1 dex = 10 w).
+// et al. 2016) of Planetesimals::cell_rates_with
+// (physics/modules/planetesimals_cell_rates.hpp), on one cell at 5 au of the MMSN gas of
+// spec §1 (tests/unit/support/mmsn_gas.hpp, written out from the spec formulas), with the
+// Stokes number prescribed so that the switches can be put exactly at their midpoints.
+// The smooth steps are logistic in ln x (spec §6.4): step(x; x0) = 1/(1 + (x0/x)^k), k =
+// ln 19/(w ln 10), w = 0.1 dex: by hand, 1/2 at x = x0, 19/20 = 0.95 at x0 10^w, 1/20 at
+// x0 10^-w, and 1/(1 + 19^-10) = 1 - 1.6e-13 at 10 x0 (1 dex = 10 w).
 namespace panoptic {
 namespace {
 

@@ -9,8 +9,8 @@
 #include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
-#include "physics/drag.hpp"
 #include "disk/local_gas.hpp"
+#include "physics/drag.hpp"
 #include "physics/particle.hpp"
 #include "physics/relative_velocity.hpp"
 #include "src/core/units.hpp"

@@ -14,10 +14,10 @@
 
 #include "disk/gas_disk.hpp"
 #include "physics/modules/dust_transport.hpp"
+#include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/disk_model.hpp"
 #include "src/solver/grid.hpp"
-#include "src/model/simulation.hpp"
 
 namespace panoptic {
 namespace {

@@ -4,8 +4,8 @@
 // §1.4, §6.1), the inner face taking that of the first interior face. On a power-law
 // disk dlnP/dlnr is the same everywhere, so only such a profile tells the faces apart.
 //
-// Set-up (as tests/unit/physics/test_transport_flux.cpp): 3 log-spaced cells from 3 to 9 au
-// (faces 3, 4.3267, 6.2403, 9 au), MMSN temperature T = 280 (r/au)^-1/2 K, mu = 2.34,
+// Set-up (as tests/unit/physics/test_transport_flux.cpp): 3 log-spaced cells from 3 to 9
+// au (faces 3, 4.3267, 6.2403, 9 au), MMSN temperature T = 280 (r/au)^-1/2 K, mu = 2.34,
 // M = 1 M_sun, St = (0.05, 0.2, 0.8) per cell (faces: 0.05, 0.1, 0.4), static gas
 // Sigma_g = 1700 (r_c/au)^-1.5 x (1, 1.3, 0.7) g cm^-2, drift only.
 // Worked out by hand (constants of spec §1.1):
@@ -34,9 +34,9 @@
 #include "disk/gas_disk.hpp"
 #include "physics/modules/dust_transport.hpp"
 #include "physics/stokes_model.hpp"
+#include "src/core/units.hpp"
 #include "src/solver/grid.hpp"
 #include "src/solver/state_layout.hpp"
-#include "src/core/units.hpp"
 
 namespace panoptic {
 namespace {

@@ -1,9 +1,9 @@
 // The dust face fluxes of physics/modules/dust_transport.cpp against numbers worked out
 // independently (mpmath, 30 digits) from spec §6.1 and the finite-volume form described
-// in physics/modules/dust_transport.hpp, on a 3-cell log-spaced grid from 3 to 9 au (faces 3,
-// 4.3267, 6.2403, 9 au; centres the geometric means of their faces), MMSN gas (spec §1.2
-// A, §1.3: T = 280 r^-1/2 K, mu = 2.34, M = 1 M_sun), alpha = 1e-3, prescribed St
-// (0.05, 0.2, 0.8) per cell, so St on the interior faces is the geometric mean of the
+// in physics/modules/dust_transport.hpp, on a 3-cell log-spaced grid from 3 to 9 au
+// (faces 3, 4.3267, 6.2403, 9 au; centres the geometric means of their faces), MMSN gas
+// (spec §1.2 A, §1.3: T = 280 r^-1/2 K, mu = 2.34, M = 1 M_sun), alpha = 1e-3, prescribed
+// St (0.05, 0.2, 0.8) per cell, so St on the interior faces is the geometric mean of the
 // neighbours: 0.1 and 0.4 (the inner face takes the first cell's 0.05).
 #include <gtest/gtest.h>
 
@@ -15,9 +15,9 @@
 #include "disk/viscous_gas.hpp"
 #include "physics/modules/dust_transport.hpp"
 #include "physics/stokes_model.hpp"
+#include "src/core/units.hpp"
 #include "src/solver/grid.hpp"
 #include "src/solver/state_layout.hpp"
-#include "src/core/units.hpp"
 
 namespace panoptic {
 namespace {

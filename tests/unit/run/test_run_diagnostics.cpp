@@ -1,6 +1,6 @@
-// The run summary and the /timeseries rows of src/run/diagnostics.cpp (spec §8), on a state
-// set by hand, against numbers worked out from the scene alone: the fiducial scene on 30
-// log-spaced cells from 2 to 300 au (grid.stretch = 0), so
+// The run summary and the /timeseries rows of src/run/diagnostics.cpp (spec §8), on a
+// state set by hand, against numbers worked out from the scene alone: the fiducial scene
+// on 30 log-spaced cells from 2 to 300 au (grid.stretch = 0), so
 //   r_f(i) = 2 au 150^(i/30),  r_c(i) = 2 au 150^((i + 1/2)/30)  (geometric means),
 // MMSN gas Sigma_g = 1700 (r/au)^-1.5 g cm^-2 and Sigma_d0 = Z Sigma_g, Z = 0.01 outside
 // the snow line and (1 - f_ice) 0.01 = 0.005 inside it (r_snow = (280/170)^2 au = 2.713
@@ -19,11 +19,11 @@
 #include <string>
 #include <vector>
 
-#include "src/scene/config.hpp"
-#include "src/run/diagnostics.hpp"
 #include "src/io/h5.hpp"
 #include "src/io/run_output.hpp"
 #include "src/model/simulation.hpp"
+#include "src/run/diagnostics.hpp"
+#include "src/scene/config.hpp"
 
 namespace panoptic {
 namespace {

@@ -1,7 +1,7 @@
 // The scan's summary and records are written atomically (src/scan/scan_summary.hpp,
-// src/scan/scan_exec.hpp): a write that fails (disk full, quota) leaves the old file whole and
-// no temporary file behind. The failure is made with RLIMIT_FSIZE: writing past the limit
-// fails with EFBIG, as a full disk fails with ENOSPC.
+// src/scan/scan_exec.hpp): a write that fails (disk full, quota) leaves the old file
+// whole and no temporary file behind. The failure is made with RLIMIT_FSIZE: writing past
+// the limit fails with EFBIG, as a full disk fails with ENOSPC.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <unistd.h>

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "src/scene/config.hpp"
 #include "src/model/simulation.hpp"
+#include "src/scene/config.hpp"
 #include "src/scene/toml_guard.hpp"
 #include "tests/unit/support/config_error.hpp"
 
@@ -564,7 +564,8 @@ TEST(Config, ParamsReferenceTomlIsUpToDate) {
   std::stringstream text;
   text << in.rdbuf();
   EXPECT_TRUE(text.str() == reference_toml())
-      << path << " differs from the schema in src/scene/scene_keys.cpp; regenerate it with "
+      << path
+      << " differs from the schema in src/scene/scene_keys.cpp; regenerate it with "
       << "`build/panoptic reference > params/reference.toml` and commit it";
 }
 

@@ -1,5 +1,5 @@
-// Accuracy presets of `panoptic run --fast / --accurate` (src/scene/presets.hpp): valid keys
-// and values on the scenes, override the scene file, and lose to an explicit --set.
+// Accuracy presets of `panoptic run --fast / --accurate` (src/scene/presets.hpp): valid
+// keys and values on the scenes, override the scene file, and lose to an explicit --set.
 #include <gtest/gtest.h>
 
 #include <stdexcept>

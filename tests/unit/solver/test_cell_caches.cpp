@@ -1,16 +1,16 @@
 // The per-cell caches of the right-hand side are keyed by the cell's state values: the
 // growth model's St cache (which also holds the decoded m and phi that the growth rates
-// reuse, physics/modules/porous_growth.cpp) and the memo of the rates. A right-hand side at y
-// evaluated after one at another state must equal, bit for bit, the right-hand side at y
-// of a model that has never seen another state.
+// reuse, physics/modules/porous_growth.cpp) and the memo of the rates. A right-hand side
+// at y evaluated after one at another state must equal, bit for bit, the right-hand side
+// at y of a model that has never seen another state.
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
+#include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/disk_model.hpp"
-#include "src/model/simulation.hpp"
 #include "tests/unit/support/evolved_state.hpp"
 
 namespace panoptic {

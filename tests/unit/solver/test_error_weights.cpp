@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/disk_model.hpp"
-#include "src/model/simulation.hpp"
 #include "src/solver/state_layout.hpp"
 #include "tests/unit/support/evolved_state.hpp"
 

@@ -10,9 +10,9 @@
 #include <memory>
 #include <utility>
 
+#include "src/core/error.hpp"
 #include "src/solver/cvode_integrator.hpp"
 #include "src/solver/disk_model.hpp"
-#include "src/core/error.hpp"
 #include "tests/unit/support/robertson.hpp"
 
 using namespace panoptic;

@@ -12,9 +12,9 @@
 #include <string_view>
 #include <vector>
 
+#include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/disk_model.hpp"
-#include "src/model/simulation.hpp"
 #include "tests/unit/support/evolved_state.hpp"
 
 using namespace panoptic;

@@ -1,8 +1,8 @@
 // The N_Vector operations panoptic installs on CVODE's vectors
-// (src/solver/serial_vector_ops.hpp) against the library's N_V*_Serial, bit for bit, on vectors
-// holding every kind of value (signed zeros, subnormals, huge, infinite, NaN) and for
-// every special case the library tells apart (coefficients 0, +-1, equal or opposite; the
-// output aliasing an input).
+// (src/solver/serial_vector_ops.hpp) against the library's N_V*_Serial, bit for bit, on
+// vectors holding every kind of value (signed zeros, subnormals, huge, infinite, NaN) and
+// for every special case the library tells apart (coefficients 0, +-1, equal or opposite;
+// the output aliasing an input).
 #include <gtest/gtest.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>

@@ -4,9 +4,9 @@
 //! monomers of the initial state.
 #include <vector>
 
-#include "src/solver/cvode_integrator.hpp"
-#include "src/model/simulation.hpp"
 #include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
+#include "src/solver/cvode_integrator.hpp"
 
 namespace panoptic {
 
