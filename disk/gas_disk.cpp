@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "src/core/units.hpp"
-#include "src/scene/config.hpp"
 #include "src/solver/grid.hpp"
 
 namespace panoptic {
@@ -88,23 +87,12 @@ double Lbp74Disk::mass_between(double r1, double r2) const {
   return -m_disk_ * std::exp(-u1) * std::expm1(-du);
 }
 
-std::unique_ptr<GasDisk> make_disk(const Config& cfg) {
-  Star star{cfg.real("star.mass_msun") * units::kMsun,
-            cfg.real("star.luminosity_lsun") * units::kLsun};
-  ThermalParams th;
-  th.T_1au = cfg.real("disk.T_1au");
-  th.q = cfg.real("disk.q");
-  th.T_floor = cfg.real("disk.T_floor");
-  th.mu = cfg.real("disk.mu");
-  th.alpha = cfg.real("disk.alpha");
-  th.sigma_mol = cfg.real("disk.sigma_mol");
-  th.T_sub = cfg.real("disk.T_sub");
-  if (cfg.str("disk.model") == "lbp")
-    return std::make_unique<Lbp74Disk>(
-        star, th, cfg.real("disk.m_disk_msun") * units::kMsun,
-        cfg.real("disk.r_c_au") * kAu, cfg.real("disk.gamma"));
-  return std::make_unique<PowerLawDisk>(star, th, cfg.real("disk.sigma_1au"),
-                                        cfg.real("disk.p"));
+std::unique_ptr<GasDisk> make_disk(const DiskParams& params) {
+  const GasProfile& g = params.profile;
+  if (g.kind == GasProfile::Kind::kLbp74)
+    return std::make_unique<Lbp74Disk>(params.star, params.thermal, g.m_disk, g.r_c,
+                                       g.gamma);
+  return std::make_unique<PowerLawDisk>(params.star, params.thermal, g.sigma_1au, g.p);
 }
 
 std::vector<double> dlnp_dlnr_centres(const GasDisk& disk, const Grid& grid,

@@ -9,7 +9,6 @@
 
 namespace panoptic {
 
-class Config;
 class Grid;
 
 struct Star {
@@ -103,8 +102,27 @@ class Lbp74Disk : public GasDisk {
   double m_disk_, r_c_, gamma_;
 };
 
-//! Builds the disk the scene asks for (keys star.*, disk.*).
-std::unique_ptr<GasDisk> make_disk(const Config& cfg);
+//! The initial (or static) surface density profile of the gas (spec §1.2).
+struct GasProfile {
+  enum class Kind { kPowerLaw, kLbp74 };
+  Kind kind = Kind::kPowerLaw;
+  double sigma_1au = 1700.0;  //!< power law: Sigma_g at 1 au [g cm^-2]
+  double p = 1.5;             //!< power law: Sigma_g ∝ r^-p
+  double m_disk = 0.0;        //!< LBP: disk mass [g]
+  double r_c = 0.0;           //!< LBP: characteristic radius [cm]
+  double gamma = 1.0;         //!< LBP: viscosity index
+};
+
+//! Everything a gas disk is built from, in cgs (src/model/scene_to_physics.hpp fills it
+//! from a scene).
+struct DiskParams {
+  Star star;
+  ThermalParams thermal;
+  GasProfile profile;
+};
+
+//! Builds the disk of `params`: a PowerLawDisk or an Lbp74Disk.
+std::unique_ptr<GasDisk> make_disk(const DiskParams& params);
 
 //! dlnP/dlnr at cell centres from the pressure of `sigma_g` [per cell]: centred
 //! differences in ln r inside, one-sided at the two ends (spec §1.4: numerical gradient).

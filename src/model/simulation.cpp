@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "disk/disk_local_gas.hpp"
 #include "disk/gas_disk.hpp"
 #include "disk/local_gas.hpp"
 #include "disk/viscous_gas.hpp"
@@ -20,6 +21,7 @@
 #include "src/core/error.hpp"
 #include "src/core/units.hpp"
 #include "src/io/run_output.hpp"
+#include "src/model/scene_to_physics.hpp"
 
 namespace panoptic {
 
@@ -45,198 +47,13 @@ double diffused_ring(double r, double r0, double w) {
   return std::exp(-0.5 * x * x) * i0e(r * r0 / (w * w)) / i0e(r0 * r0 / (w * w));
 }
 
-physics::MonomerMaterial material(const Config& cfg, const std::string& sp) {
-  physics::MonomerMaterial m;
-  m.a0 = cfg.real("material.a0_um") * 1e-4;
-  m.xi_crit = cfg.real("material.xi_crit_angstrom") * 1e-8;
-  m.z0 = cfg.real("material.z0_nm") * 1e-7;
-  m.rolling_radius_factor = cfg.real("material.rolling_radius_factor");
-  m.rho0 = cfg.real("material." + sp + "_rho0");
-  m.gamma_surf = cfg.real("material." + sp + "_gamma");
-  m.youngs_modulus = cfg.real("material." + sp + "_youngs_gpa") * 1e10;  // GPa -> Ba
-  m.poisson = cfg.real("material." + sp + "_poisson");
-  return m;
-}
-
 }  // namespace
-
-physics::Species species_from_config(const Config& cfg, const std::string& sp) {
-  const auto mat = material(cfg, sp);
-  const auto contact = physics::contact_properties(mat);
-  physics::Species s;
-  s.a0 = mat.a0;
-  s.rho0 = mat.rho0;
-  s.m0 = contact.m0;
-  s.e_roll = contact.e_roll;
-  s.v_frag = 100.0 * cfg.real("fragmentation.v_frag_" + sp + "_m_s");
-  // fragmentation.species: "both", or only "silicate" (sp = "sil") or "ice"
-  const std::string& which = cfg.str("fragmentation.species");
-  s.fragments = which == "both" || which.starts_with(sp);
-  return s;
-}
-
-physics::OpticalTable optical_table_from_config(const Config& cfg,
-                                                const std::string& sp) {
-  const std::string key = "observe." + sp;
-  try {
-    return physics::OpticalTable(sp, cfg.reals(key + "_lambda_mm"), cfg.reals(key + "_n"),
-                                 cfg.reals(key + "_k"));
-  } catch (const std::invalid_argument& e) {
-    // the one a --set changed (observe reads the run's resolved scene, where all three
-    // are set), else the one the scene set, if only one
-    std::string blamed = key + "_lambda_mm";
-    for (const char* suffix : {"_n", "_k"})
-      if (cfg.user_set(key + suffix) && !cfg.user_set(blamed)) blamed = key + suffix;
-    for (const char* suffix : {"_lambda_mm", "_n", "_k"})
-      if (cfg.where(key + suffix) == "--set" && cfg.where(blamed) != "--set")
-        blamed = key + suffix;
-    cfg.fail(blamed, std::string(e.what()) + "; fix " + key + "_lambda_mm, _n, _k");
-  }
-}
-
-physics::GrowthOptions growth_options_from_config(const Config& cfg) {
-  physics::GrowthOptions o;
-  o.f_grow = cfg.real("growth.f_grow");
-  o.eps = cfg.real("growth.eps");
-  o.drag = cfg.str("growth.drag_law") == "epstein" ? physics::DragLaw::kEpstein
-                                                   : physics::DragLaw::kStokesRe;
-  o.st_max = cfg.real("growth.St_max");
-  o.turbulence.vg2_factor = cfg.real("growth.vg2_factor");
-  o.porosity = cfg.flag("porosity.enabled");
-  o.s_hs = cfg.real("porosity.s_hs");
-  o.b = cfg.real("porosity.b");
-  o.phi_max = cfg.real("porosity.phi_max");
-  o.gas_compaction = cfg.flag("porosity.gas_compaction");
-  o.self_gravity = cfg.flag("porosity.self_gravity");
-  const auto& e = cfg.str("erosion.model");
-  o.erosion = e == "halt"      ? physics::ErosionModel::kHalt
-              : e == "balance" ? physics::ErosionModel::kBalance
-                               : physics::ErosionModel::kNone;
-  o.v_eros = 100.0 * cfg.real("erosion.v_eros_m_s");
-  o.w_eros = cfg.real("erosion.width");
-  o.f_s = cfg.real("erosion.f_s");
-  o.eps_eros = cfg.real("erosion.eps_eros");
-  o.st_small = cfg.real("erosion.St_small");
-  o.fragmentation = cfg.flag("fragmentation.enabled");
-  o.bouncing = cfg.flag("bouncing.enabled");
-  o.phi_bounce = cfg.real("bouncing.phi_bounce");
-  return o;
-}
-
-void validate_scene(const Config& cfg) {
-  const double r_in = cfg.real("grid.r_in_au"), r_out = cfg.real("grid.r_out_au");
-  if (r_in >= r_out)
-    cfg.fail("grid.r_in_au",
-             "must be < grid.r_out_au = " + num(r_out) +
-                 " [au]; make the inner edge smaller than the outer edge");
-  if (r_out / r_in > 1e8)
-    cfg.fail("grid.r_out_au", "r_out/r_in must be <= 1e8; narrow the radial domain");
-  const double max_dt = cfg.real("solver.max_dt_yr");
-  if (max_dt > 0.0 && max_dt < 1e-6)
-    cfg.fail("solver.max_dt_yr",
-             "must be 0 (unlimited) or >= 1e-6 [yr] (a step of 1e-320 yr is not one); "
-             "raise it");
-  // Output times: CVODE cannot step to a time closer to the last one than a few
-  // round-offs (CV_TOO_CLOSE) nor start with a step of 1e-300 yr (CV_ILL_INPUT), so
-  // they must lie >= kMinTime after t = 0 (the lower bound of output.t_end_yr,
-  // t_first_yr and times_yr in the schema) and kMinGap (relative) apart.
-  constexpr double kMinTime = 1e-6, kMinGap = 1e-9;
-  const double t_end = cfg.real("output.t_end_yr");
-  const auto& times = cfg.reals("output.times_yr");
-  if (times.empty()) {  // log-spaced from t_first_yr (unused with a list of times)
-    const double t_first = cfg.real("output.t_first_yr");
-    if (t_first > t_end)
-      cfg.fail("output.t_first_yr", "must be <= output.t_end_yr = " + num(t_end) +
-                                        " [yr]; lower it or raise t_end_yr");
-    const long m = cfg.integer("output.n_snapshots");
-    if (m > 1 && t_first < t_end &&
-        std::expm1(std::log(t_end / t_first) / double(m - 1)) < kMinGap)
-      cfg.fail("output.n_snapshots", "puts snapshots less than " + num(kMinGap) +
-                                         " (relative) apart between "
-                                         "t_first_yr = " +
-                                         num(t_first) + " and t_end_yr = " + num(t_end) +
-                                         "; use fewer snapshots or a wider time span");
-  }
-  for (std::size_t i = 0; i < times.size(); ++i) {
-    if (times[i] < kMinTime || times[i] > t_end)
-      cfg.fail("output.times_yr", "every time must be in [" + num(kMinTime) +
-                                      ", t_end_yr = " + num(t_end) +
-                                      "] [yr]; remove or fix the entry " + num(times[i]));
-    if (i > 0 && times[i] <= times[i - 1])
-      cfg.fail("output.times_yr", "times must be strictly increasing; sort the list");
-    const double next = i + 1 < times.size() ? times[i + 1] : t_end;
-    if (next > times[i] && next - times[i] < kMinGap * next)
-      cfg.fail("output.times_yr", "the times " + num(times[i]) + " and " + num(next) +
-                                      " [yr] (or t_end_yr) are less than " +
-                                      num(kMinGap) + " (relative) apart; merge them");
-  }
-  // /timeseries: RunDiagnostics lays out every sample time at the start, so their number
-  // is bounded (1e6 snapshots of 1e5 samples each, both inside their ranges, asked for
-  // 800 GB and ended in std::bad_alloc after the output file was created)
-  {
-    constexpr double kMaxSamples = 1e7;
-    // the intervals of output_times(): to each listed time, and on to t_end
-    const double intervals =
-        times.empty() ? double(cfg.integer("output.n_snapshots"))
-                      : double(times.size()) + (times.back() < t_end ? 1.0 : 0.0);
-    const long per = cfg.integer("pebbles.samples_per_snapshot");
-    if (intervals * double(per) > kMaxSamples)
-      cfg.fail("pebbles.samples_per_snapshot",
-               "with " + num(intervals) +
-                   " snapshot intervals (output.n_snapshots or output.times_yr) makes " +
-                   num(intervals * double(per)) + " /timeseries samples, more than " +
-                   num(kMaxSamples) + "; lower pebbles.samples_per_snapshot to at most " +
-                   std::to_string(std::max(1L, long(kMaxSamples / intervals))) +
-                   " or use fewer snapshots");
-  }
-  if (cfg.flag("porosity.enabled") && !cfg.flag("growth.enabled"))
-    cfg.fail(
-        "porosity.enabled",
-        "needs growth.enabled = true (the filling factor evolves as the particle grows); "
-        "turn growth on or porosity off");
-  for (const char* key : {"planetesimals.coagulation"})
-    if (cfg.flag(key) && !cfg.flag("growth.enabled"))
-      cfg.fail(key,
-               "needs growth.enabled = true (conversion depends on the particles); "
-               "turn growth on or this channel off");
-  if (cfg.flag("snowline.enabled") && cfg.real("disk.q") < 0.0)
-    cfg.fail("disk.q",
-             "< 0 makes the temperature rise outward, so ice would lie inside silicate; "
-             "the snow line of spec §1.7 needs T falling outward: set disk.q >= 0 or "
-             "snowline.enabled = false");
-  const auto& radii_au = cfg.reals("pebbles.radii_au");
-  for (std::size_t i = 0; i < radii_au.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j)
-      if (radii_au[i] == radii_au[j])
-        cfg.fail("pebbles.radii_au", "lists " + num(radii_au[i]) +
-                                         " [au] twice (one monitor each would record the "
-                                         "same flux); remove one");
-  for (double r : radii_au)
-    if (!(r > cfg.real("grid.r_in_au") && r < cfg.real("grid.r_out_au")))
-      cfg.fail("pebbles.radii_au",
-               "every radius must lie strictly inside the grid, (r_in_au, r_out_au) = (" +
-                   num(cfg.real("grid.r_in_au")) + ", " + num(cfg.real("grid.r_out_au")) +
-                   ") [au]: the flux through r_in is always recorded, and none crosses "
-                   "the closed outer edge; remove " +
-                   num(r));
-  // The optical-constant tables are read only by `panoptic observe`, but a table that
-  // observe will refuse (lengths differ, wavelengths not increasing) is checked here, so
-  // that `panoptic check` and a run find it and not an observe after the run.
-  for (const std::string sp : {"ice", "sil"}) (void)optical_table_from_config(cfg, sp);
-  if (cfg.str("dust.init") == "gaussian_ring") {
-    const double r0 = cfg.real("dust.ring_r_au");
-    if (r0 <= r_in || r0 >= r_out)
-      cfg.fail("dust.ring_r_au", "the ring centre must lie inside the grid (" +
-                                     num(r_in) + ", " + num(r_out) +
-                                     ") [au]; move the ring or the grid edges");
-  }
-}
 
 Simulation::Simulation(const Config& cfg)
     : cfg_(cfg),
       grid_(cfg.real("grid.r_in_au") * kAu, cfg.real("grid.r_out_au") * kAu,
             static_cast<int>(cfg.integer("grid.n_cells")), cfg.real("grid.stretch")),
-      disk_(make_disk(cfg)) {
+      disk_(make_disk(disk_params_from_config(cfg))) {
   const int n = grid_.n_cells();
   gas_.static_sigma.resize(n);
   for (int i = 0; i < n; ++i) gas_.static_sigma[i] = disk_->sigma_g(grid_.r_c(i));
@@ -284,10 +101,8 @@ Simulation::Simulation(const Config& cfg)
   sigma_scale_ = sigma_d_max;
 
   // The local gas of every cell and the decoder of the particle state (spec §2, §6.2).
-  const auto dlnp = dlnp_dlnr_centres(*disk_, grid_, gas_.static_sigma);
-  std::vector<physics::LocalGas> local(n);
-  for (int i = 0; i < n; ++i) local[i] = local_gas(i, dlnp[i]);
-  cell_gas_ = std::make_unique<CellGas>(std::move(local), gas_);
+  cell_gas_ = std::make_unique<CellGas>(
+      local_gas_centres(*disk_, grid_, gas_.static_sigma), gas_);
   codec_ = std::make_unique<ParticleCodec>();
   codec_->m_ref = std::min(ice.m0, sil.m0);
   for (int i = 0; i < n; ++i)
@@ -327,8 +142,7 @@ Simulation::Simulation(const Config& cfg)
     viscous_ = gas.get();
     modules.push_back(std::move(gas));
   }
-  DustTransportOptions topt{cfg.flag("transport.drift"), cfg.flag("transport.diffusion"),
-                            cfg.str("transport.advection") == "van_leer"};
+  const DustTransportOptions topt = transport_options_from_config(cfg);
   auto transport = std::make_unique<DustTransport>(
       *layout_, grid_, *disk_, gas_, stencil, *stokes_, topt, sigma_d_max, dust_mass0_);
   transport_ = transport.get();
@@ -346,20 +160,7 @@ Simulation::Simulation(const Config& cfg)
   // Planetesimal channels (spec §7), after the growth model whose particles they convert.
   // Without growth only the SI channel can run, on the prescribed St.
   if (cfg.flag("planetesimals.coagulation") || cfg.str("planetesimals.si") != "none") {
-    PlanetesimalOptions po;
-    po.coagulation = cfg.flag("planetesimals.coagulation");
-    po.st_pl = cfg.real("planetesimals.St_pl");
-    po.tau_pl_omega = cfg.real("planetesimals.tau_pl_omega");
-    const auto& si = cfg.str("planetesimals.si");
-    po.si = si == "d16"     ? StreamingInstability::kD16
-            : si == "s18"   ? StreamingInstability::kS18
-            : si == "zcrit" ? StreamingInstability::kZcrit
-                            : StreamingInstability::kNone;
-    po.zeta = si == "s18"     ? cfg.real("planetesimals.zeta_s18")
-              : si == "zcrit" ? cfg.real("planetesimals.zeta_zcrit")
-                              : cfg.real("planetesimals.zeta_d16");
-    po.st_si_min = cfg.real("planetesimals.St_si_min");
-    po.eps_crit = cfg.real("planetesimals.eps_crit");
+    const PlanetesimalOptions po = planetesimal_options_from_config(cfg);
     auto pl =
         std::make_unique<Planetesimals>(*layout_, *codec_, *cell_gas_, *stokes_, species_,
                                         growth_options_from_config(cfg), po, sigma_d_max);
@@ -504,22 +305,15 @@ std::vector<double> Simulation::initial_state() const {
   return y;
 }
 
-physics::LocalGas Simulation::local_gas(int cell, double dlnp_dlnr) const {
-  const double r = grid_.r_c(cell);
-  return physics::make_local_gas(gas_.static_sigma[cell], disk_->temperature(r), r,
-                                 disk_->star().mass, disk_->alpha(), dlnp_dlnr,
-                                 disk_->thermal().mu, disk_->thermal().sigma_mol);
-}
-
 void Simulation::refresh_local_gas(std::span<const double> y) {
   if (!cell_gas_ || !gas_.evolves()) return;
   const int n = grid_.n_cells();
   const auto& L = *layout_;
   std::vector<double> sigma(n);
   for (int i = 0; i < n; ++i) sigma[i] = y[L.index(i, gas_.slot)];
-  // eta at the cell centres as for the initial gas (local_gas, spec §1.4), from the
-  // pressure gradient of this Sigma_g: the same bits as the initial eta at t = 0.
-  const auto dlnp = dlnp_dlnr_centres(*disk_, grid_, sigma);
+  // eta at the cell centres as for the initial gas (local_gas_centres, spec §1.4), from
+  // the pressure gradient of this Sigma_g: the same bits as the initial eta at t = 0.
+  const auto gas = local_gas_centres(*disk_, grid_, sigma);
   // v_g on the faces as the dust drift takes it (no flow through the outer face),
   // averaged onto the centres (spec §3 item 2).
   std::vector<double> v_face(n + 1, 0.0);
@@ -527,7 +321,7 @@ void Simulation::refresh_local_gas(std::span<const double> y) {
     v_face[f] = viscous_->stencil().face_velocity(f, sigma[f > 0 ? f - 1 : 0], sigma[f]);
   std::vector<double> eta(n), v_r_gas(n);
   for (int i = 0; i < n; ++i) {
-    eta[i] = local_gas(i, dlnp[i]).eta;
+    eta[i] = gas[i].eta;
     v_r_gas[i] = 0.5 * (v_face[i] + v_face[i + 1]);
   }
   cell_gas_->set_pressure_and_flow(eta, v_r_gas);
@@ -841,8 +635,8 @@ std::string Simulation::summary() const {
       << " with output.t_first_yr = t_end_yr = " << cfg_.real("output.t_end_yr")
       << " yr: one snapshot after t = 0; lower t_first_yr for more\n";
   if (growth_) {  // spec §0: the contact mechanics behind the collision parameters
-    s << physics::contact_summary("ice", material(cfg_, "ice")) << "\n";
-    s << physics::contact_summary("silicate", material(cfg_, "sil")) << "\n";
+    s << physics::contact_summary("ice", material_from_config(cfg_, "ice")) << "\n";
+    s << physics::contact_summary("silicate", material_from_config(cfg_, "sil")) << "\n";
     // spec §5.3 has bouncing at every speed for phi >= phi_bounce, and monomers start at
     // phi = 1 (README, "What works").
     if (cfg_.flag("bouncing.enabled"))

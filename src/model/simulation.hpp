@@ -13,6 +13,8 @@
 #include "disk/gas_column.hpp"
 #include "disk/local_gas.hpp"
 #include "physics/optical_constants.hpp"
+#include "src/model/scene_to_physics.hpp"
+#include "src/model/scene_validation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
 #include "src/solver/disk_model.hpp"
@@ -34,19 +36,6 @@ namespace physics {
 struct Species;
 struct GrowthOptions;
 }  // namespace physics
-
-//! Cross-key checks of a loaded scene (r_in < r_out, output times, ...): throws
-//! ConfigError naming the key. Call before anything is allocated or written.
-void validate_scene(const Config& cfg);
-
-//! The monomer species "ice" or "sil" of the scene (keys material.*, spec §0).
-physics::Species species_from_config(const Config& cfg, const std::string& sp);
-//! The optical constants observe.<sp>_lambda_mm, _n, _k of species "ice" or "sil" as a
-//! table; a table the scene makes invalid fails naming the key (the one a --set
-//! changed, if any).
-physics::OpticalTable optical_table_from_config(const Config& cfg, const std::string& sp);
-//! The growth-model switches and parameters of the scene (spec §3-§5).
-physics::GrowthOptions growth_options_from_config(const Config& cfg);
 
 //! A radius where the pebble flux is recorded (spec §8): the face nearest to it.
 struct PebbleMonitor {
@@ -126,9 +115,6 @@ class Simulation {
   //! Throws ConfigError when the gas disk, the local gas, the initial state or its
   //! right-hand side is not finite (and positive where it must be) in some cell.
   void check_start_is_finite() const;
-  //! The local gas of `cell` at the initial Sigma_g with the pressure slope dlnp_dlnr
-  //! (the particle laws' reference, CellGas).
-  physics::LocalGas local_gas(int cell, double dlnp_dlnr) const;
   Config cfg_;
   Grid grid_;
   std::unique_ptr<GasDisk> disk_;

@@ -4,12 +4,13 @@
 #include <memory>
 #include <sstream>
 
+#include "disk/disk_local_gas.hpp"
 #include "disk/gas_disk.hpp"
 #include "disk/local_gas.hpp"
 #include "physics/growth_rates.hpp"
 #include "src/core/error.hpp"
 #include "src/core/units.hpp"
-#include "src/model/simulation.hpp"
+#include "src/model/scene_to_physics.hpp"
 #include "src/solver/cvode_integrator.hpp"
 
 namespace panoptic {
@@ -19,7 +20,7 @@ namespace {
 class TrackModel : public PhysicsModule {
  public:
   TrackModel(StateLayout& layout, const Config& cfg, double r0)
-      : disk_(make_disk(cfg)),
+      : disk_(make_disk(disk_params_from_config(cfg))),
         opt_(growth_options_from_config(cfg)),
         ice_(species_from_config(cfg, "ice")),
         sil_(species_from_config(cfg, "sil")),
@@ -79,10 +80,7 @@ class TrackModel : public PhysicsModule {
     auto lnp = [&](double x) { return std::log(disk_->pressure(disk_->sigma_g(x), x)); };
     const double dlnp =
         (lnp(r * (1 + h)) - lnp(r * (1 - h))) / (std::log1p(h) - std::log1p(-h));
-    const auto& th = disk_->thermal();
-    return physics::make_local_gas(disk_->sigma_g(r), disk_->temperature(r), r,
-                                   disk_->star().mass, th.alpha, dlnp, th.mu,
-                                   th.sigma_mol);
+    return local_gas_at(*disk_, r, disk_->sigma_g(r), dlnp);
   }
   void rates(const double* y, double* d) const {
     const TrackPoint p = point(0.0, y);

@@ -17,7 +17,7 @@
 #include "src/io/checkpoint.hpp"
 #include "src/io/durable_file.hpp"
 #include "src/io/h5.hpp"
-#include "src/model/simulation.hpp"
+#include "src/model/scene_to_physics.hpp"
 #include "src/observe/observe_image.hpp"
 #include "src/scene/config.hpp"
 

@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "src/io/checkpoint.hpp"
-#include "src/model/simulation.hpp"
+#include "src/model/scene_validation.hpp"
 #include "src/scene/toml_guard.hpp"
 #include "src/scene/toml_literal.hpp"
 

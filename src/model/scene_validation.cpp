@@ -1,0 +1,121 @@
+#include "src/model/scene_validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "src/core/error.hpp"
+#include "src/model/scene_to_physics.hpp"
+
+namespace panoptic {
+
+void validate_scene(const Config& cfg) {
+  const double r_in = cfg.real("grid.r_in_au"), r_out = cfg.real("grid.r_out_au");
+  if (r_in >= r_out)
+    cfg.fail("grid.r_in_au",
+             "must be < grid.r_out_au = " + num(r_out) +
+                 " [au]; make the inner edge smaller than the outer edge");
+  if (r_out / r_in > 1e8)
+    cfg.fail("grid.r_out_au", "r_out/r_in must be <= 1e8; narrow the radial domain");
+  const double max_dt = cfg.real("solver.max_dt_yr");
+  if (max_dt > 0.0 && max_dt < 1e-6)
+    cfg.fail("solver.max_dt_yr",
+             "must be 0 (unlimited) or >= 1e-6 [yr] (a step of 1e-320 yr is not one); "
+             "raise it");
+  // Output times: CVODE cannot step to a time closer to the last one than a few
+  // round-offs (CV_TOO_CLOSE) nor start with a step of 1e-300 yr (CV_ILL_INPUT), so
+  // they must lie >= kMinTime after t = 0 (the lower bound of output.t_end_yr,
+  // t_first_yr and times_yr in the schema) and kMinGap (relative) apart.
+  constexpr double kMinTime = 1e-6, kMinGap = 1e-9;
+  const double t_end = cfg.real("output.t_end_yr");
+  const auto& times = cfg.reals("output.times_yr");
+  if (times.empty()) {  // log-spaced from t_first_yr (unused with a list of times)
+    const double t_first = cfg.real("output.t_first_yr");
+    if (t_first > t_end)
+      cfg.fail("output.t_first_yr", "must be <= output.t_end_yr = " + num(t_end) +
+                                        " [yr]; lower it or raise t_end_yr");
+    const long m = cfg.integer("output.n_snapshots");
+    if (m > 1 && t_first < t_end &&
+        std::expm1(std::log(t_end / t_first) / double(m - 1)) < kMinGap)
+      cfg.fail("output.n_snapshots", "puts snapshots less than " + num(kMinGap) +
+                                         " (relative) apart between "
+                                         "t_first_yr = " +
+                                         num(t_first) + " and t_end_yr = " + num(t_end) +
+                                         "; use fewer snapshots or a wider time span");
+  }
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    if (times[i] < kMinTime || times[i] > t_end)
+      cfg.fail("output.times_yr", "every time must be in [" + num(kMinTime) +
+                                      ", t_end_yr = " + num(t_end) +
+                                      "] [yr]; remove or fix the entry " + num(times[i]));
+    if (i > 0 && times[i] <= times[i - 1])
+      cfg.fail("output.times_yr", "times must be strictly increasing; sort the list");
+    const double next = i + 1 < times.size() ? times[i + 1] : t_end;
+    if (next > times[i] && next - times[i] < kMinGap * next)
+      cfg.fail("output.times_yr", "the times " + num(times[i]) + " and " + num(next) +
+                                      " [yr] (or t_end_yr) are less than " +
+                                      num(kMinGap) + " (relative) apart; merge them");
+  }
+  // /timeseries: RunDiagnostics lays out every sample time at the start, so their number
+  // is bounded (1e6 snapshots of 1e5 samples each, both inside their ranges, asked for
+  // 800 GB and ended in std::bad_alloc after the output file was created)
+  {
+    constexpr double kMaxSamples = 1e7;
+    // the intervals of output_times(): to each listed time, and on to t_end
+    const double intervals =
+        times.empty() ? double(cfg.integer("output.n_snapshots"))
+                      : double(times.size()) + (times.back() < t_end ? 1.0 : 0.0);
+    const long per = cfg.integer("pebbles.samples_per_snapshot");
+    if (intervals * double(per) > kMaxSamples)
+      cfg.fail("pebbles.samples_per_snapshot",
+               "with " + num(intervals) +
+                   " snapshot intervals (output.n_snapshots or output.times_yr) makes " +
+                   num(intervals * double(per)) + " /timeseries samples, more than " +
+                   num(kMaxSamples) + "; lower pebbles.samples_per_snapshot to at most " +
+                   std::to_string(std::max(1L, long(kMaxSamples / intervals))) +
+                   " or use fewer snapshots");
+  }
+  if (cfg.flag("porosity.enabled") && !cfg.flag("growth.enabled"))
+    cfg.fail(
+        "porosity.enabled",
+        "needs growth.enabled = true (the filling factor evolves as the particle grows); "
+        "turn growth on or porosity off");
+  for (const char* key : {"planetesimals.coagulation"})
+    if (cfg.flag(key) && !cfg.flag("growth.enabled"))
+      cfg.fail(key,
+               "needs growth.enabled = true (conversion depends on the particles); "
+               "turn growth on or this channel off");
+  if (cfg.flag("snowline.enabled") && cfg.real("disk.q") < 0.0)
+    cfg.fail("disk.q",
+             "< 0 makes the temperature rise outward, so ice would lie inside silicate; "
+             "the snow line of spec §1.7 needs T falling outward: set disk.q >= 0 or "
+             "snowline.enabled = false");
+  const auto& radii_au = cfg.reals("pebbles.radii_au");
+  for (std::size_t i = 0; i < radii_au.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (radii_au[i] == radii_au[j])
+        cfg.fail("pebbles.radii_au", "lists " + num(radii_au[i]) +
+                                         " [au] twice (one monitor each would record the "
+                                         "same flux); remove one");
+  for (double r : radii_au)
+    if (!(r > cfg.real("grid.r_in_au") && r < cfg.real("grid.r_out_au")))
+      cfg.fail("pebbles.radii_au",
+               "every radius must lie strictly inside the grid, (r_in_au, r_out_au) = (" +
+                   num(cfg.real("grid.r_in_au")) + ", " + num(cfg.real("grid.r_out_au")) +
+                   ") [au]: the flux through r_in is always recorded, and none crosses "
+                   "the closed outer edge; remove " +
+                   num(r));
+  // The optical-constant tables are read only by `panoptic observe`, but a table that
+  // observe will refuse (lengths differ, wavelengths not increasing) is checked here, so
+  // that `panoptic check` and a run find it and not an observe after the run.
+  for (const std::string sp : {"ice", "sil"}) (void)optical_table_from_config(cfg, sp);
+  if (cfg.str("dust.init") == "gaussian_ring") {
+    const double r0 = cfg.real("dust.ring_r_au");
+    if (r0 <= r_in || r0 >= r_out)
+      cfg.fail("dust.ring_r_au", "the ring centre must lie inside the grid (" +
+                                     num(r_in) + ", " + num(r_out) +
+                                     ") [au]; move the ring or the grid edges");
+  }
+}
+
+}  // namespace panoptic
