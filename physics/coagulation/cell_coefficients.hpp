@@ -1,0 +1,89 @@
+#pragma once
+//! The coefficients of one disk cell for the coagulation engine (spec §15.2-§15.3): the
+//! bins' radii, Stokes numbers and scale heights from their filling factors (spec §2),
+//! the pair speeds (spec §3), the kernel, the fragmentation probabilities, the porosity
+//! of sticking products and the compaction floors (spec §4.3-§4.4 per bin), from the
+//! local gas and the monomer species. Off the run path: used by the tests and
+//! tests/bench/bench_coagulation.cpp until the distribution mode of issue 35 lands.
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include "disk/local_gas.hpp"
+#include "physics/coagulation/collision_kernel.hpp"
+#include "physics/coagulation/porosity.hpp"
+#include "physics/coagulation/smoluchowski.hpp"
+#include "physics/compaction.hpp"
+#include "physics/growth_options.hpp"
+
+namespace panoptic::physics::coagulation {
+
+//! What a cell's coefficients depend on besides the gas and the state.
+struct CellModel {
+  Species species;           //!< monomers (a0, rho0, m0, E_roll)
+  GrowthOptions growth;      //!< drag law, b, phi_max, floors on/off, turbulence
+  OutcomeSwitches outcomes;  //!< fragmentation and cratering switches and speeds
+};
+
+//! Coefficients of the cell with bin masses sigma and, for porous aggregates, psi (empty:
+//! compact, phi = 1). A bin without mass (psi = 0) is given phi = 1: it enters only the
+//! Jacobian, through the rate of its first collisions.
+inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
+                                          std::span<const double> sigma,
+                                          std::span<const double> psi,
+                                          const LocalGas& gas, const CellModel& model) {
+  const MassGrid& grid = engine.grid();
+  const int n = grid.size();
+  const bool porous = !psi.empty();
+  std::vector<double> phi(n, 1.0), u(n, 1.0);
+  if (porous)
+    for (int k = 0; k < n; ++k)
+      if (sigma[k] > 0.0 && psi[k] > 0.0) {
+        u[k] = psi[k] / sigma[k];
+        phi[k] = 1.0 / u[k];
+      }
+  const Species& sp = model.species;
+  const GrowthOptions& o = model.growth;
+  const BinProperties bins = bin_properties(grid, phi, sp.rho0, gas, o.drag);
+  const std::vector<double> dv = pair_speeds(grid, bins, gas, o.turbulence);
+  CellCoefficients c;
+  c.kernel = collision_kernel(bins.a, bins.h_d, [&](int i, int j) {
+    return dv[static_cast<std::size_t>(i) * n + j];
+  });
+  if (model.outcomes.fragmentation || model.outcomes.cratering)
+    c.p_frag = fragmentation_probabilities(engine, dv, model.outcomes);
+  if (!porous) return c;
+
+  const auto& m = grid.m;
+  c.ln_u_ratio.assign(static_cast<std::size_t>(n) * n, 0.0);
+  const double e_threshold = 3.0 * o.b * sp.e_roll;  // spec §4.2
+  for (int i = 0; i < n; ++i) {
+    const double s_c = compression_slope_of_target(bins.a[i], bins.St[i], gas, o.drag);
+    for (int j = 0; j <= i; ++j) {
+      const std::size_t ij = static_cast<std::size_t>(i) * n + j;
+      const double e_imp = impact_energy(m[i], m[j], dv[ij]);  // spec §15.3
+      c.ln_u_ratio[ij] =
+          product_ln_u_ratio(m[i], u[i], m[j], u[j], e_imp, e_threshold, s_c);
+    }
+  }
+  if (!o.gas_compaction && !o.self_gravity) return c;
+  c.ln_phi_floor.resize(n);
+  c.relax_rate.resize(n);
+  for (int k = 0; k < n; ++k) {
+    // spec §4.3 floors of the bin's mass and St (physics/compaction.hpp)
+    c.ln_phi_floor[k] = ln_compaction_floor(m[k], bins.St[k], gas, sp, o);
+    // spec §4.4 with physics/compaction.hpp's constants: t_relax = kRelaxFraction
+    // min(t_grow, kRelaxCapOmega/Omega), t_grow from the bin's sticking gain of mass per
+    // unit mass, sum_j K_kj n_j m_j / m_k
+    double growth = 0.0;
+    for (int j = 0; j < n; ++j)
+      growth += c.kernel[static_cast<std::size_t>(k) * n + j] * sigma[j] / m[k];
+    const double t_grow = 1.0 / (growth + 1e-30);
+    const double t_relax =
+        kRelaxFraction * soft_min(t_grow, kRelaxCapOmega / gas.omega_k);
+    c.relax_rate[k] = 1.0 / t_relax;
+  }
+  return c;
+}
+
+}  // namespace panoptic::physics::coagulation

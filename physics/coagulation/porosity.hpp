@@ -1,0 +1,86 @@
+#pragma once
+//! The filling factor of a sticking product and the compaction floor of each bin in the
+//! size-distribution mode (spec §15.3). A bin's porosity is u_k = psi_k / sigma_k, the
+//! mass-weighted mean of 1/phi (physics/coagulation/smoluchowski.hpp); an aggregate of
+//! mass m and specific volume u has the volume measure W = m u = rho0 V [g].
+//!
+//! Product of a pair (target i the larger mass, projectile j), at impact energy
+//! E = (1/2) mu dv^2 with the reduced mass mu = m_i m_j / (m_i + m_j) (spec §15.3):
+//! * hit-and-stick (E << 3 b E_roll): the volume rule of Okuzumi, Tanaka & Sakagami
+//!   (2009) used by Okuzumi et al. (2012) for unequal masses, as it is usually cited
+//!   [R-O12: written from the citation, not checked against the paper's text]:
+//!     V_p = V_1 + V_2 + V_void,  V_void = min(0.99 - 1.03 ln(2/(V_1/V_2 + 1)), 6.94)
+//!     V_2,
+//!   with V_1 >= V_2. Equal volumes give V_p = 2.99 V_1, the s_hs = 1 - log2(2.99) =
+//!   -0.580 of spec §4.3 [V: Pamdeas constant]. The min is a soft-min (p = 8; 2e-8
+//!   relative at equal volumes) so that the right-hand side stays smooth.
+//! * collisional compression (E >> 3 b E_roll): a reconstruction [C], not Okuzumi et
+//!   al.'s (2012) compression formula (after Suyama et al. 2012), whose text we could not
+//!   read: the product's ln phi is the mass-weighted mean of its partners' plus the
+//!   equilibrium slope s_c of spec §4.3 times ln(m_p / m_i),
+//!     ln phi_p = (m_i ln phi_i + m_j ln phi_j)/m_p + s_c ln(1 + m_j/m_i),
+//!   s_c = -1/8 (Epstein, St < 1), 0 (Stokes, St < 1), -1/5 (St >= 1) of the target. Its
+//!   equal-mass limit is the single-size law d ln phi/d ln m = s_c by construction, and
+//!   a small projectile changes the target's phi by O(m_j/m_i).
+//! The two are blended in ln u by the logistic in ln(E / 3 b E_roll) over 0.1 dex, as
+//! the single-size model switches its slopes (physics/compaction.hpp).
+#include <cmath>
+
+#include "disk/local_gas.hpp"
+#include "physics/drag.hpp"
+#include "physics/smooth_switches.hpp"
+
+namespace panoptic::physics::coagulation {
+
+//! Okuzumi et al.'s (2012) cap on V_void / V_2 [-].
+inline constexpr double kVoidCap = 6.94;
+
+//! ln(u_p / u_i) of hit-and-stick: V_p = V_1 + V_2 + V_void (above) [-]; m [g], u =
+//! <1/phi> [-]. Written without cancelling terms: log1p((W_j + W_void)/W_i) -
+//! log1p(m_j/m_i).
+inline double ln_u_ratio_hit_and_stick(double m_i, double u_i, double m_j, double u_j) {
+  const double w_i = m_i * u_i, w_j = m_j * u_j;
+  const double w_big = w_i > w_j ? w_i : w_j;
+  const double w_small = w_i > w_j ? w_j : w_i;
+  const double f =
+      soft_min(0.99 + 1.03 * std::log(0.5 * (w_big / w_small + 1.0)), kVoidCap);
+  return std::log1p((w_j + f * w_small) / w_i) - std::log1p(m_j / m_i);
+}
+
+//! ln(u_p / u_i) of collisional compression (the reconstruction above) [-];
+//! s_c: slope d ln phi / d ln m [-].
+inline double ln_u_ratio_compression(double m_i, double u_i, double m_j, double u_j,
+                                     double s_c) {
+  const double mp = m_i + m_j;
+  return (m_j / mp) * std::log(u_j / u_i) - s_c * std::log1p(m_j / m_i);
+}
+
+//! Equilibrium compression slope of spec §4.3 for the target (radius a [cm], St):
+//! -1/8 (Epstein drag, St < 1), 0 (Stokes drag, St < 1), -1/5 (St >= 1), blended by the
+//! logistic steps of physics/compaction.hpp (x = 4a/(9 lambda) about 1 and St about 1,
+//! 0.1 dex) [-].
+inline double compression_slope_of_target(double a, double St, const LocalGas& gas,
+                                          DragLaw law) {
+  const double w_stokes =
+      law == DragLaw::kEpstein ? 0.0 : log_step(knudsen_ratio(a, gas), 1.0, 0.1);
+  const double w_heavy = log_step(St, 1.0, 0.1);
+  return (1.0 - w_heavy) * ((1.0 - w_stokes) * (-0.125)) + w_heavy * (-0.2);
+}
+
+//! ln(u_p / u_i) of a sticking pair at impact energy e_imp [erg] against the threshold
+//! 3 b E_roll [erg]: hit-and-stick and compression blended (above) [-].
+inline double product_ln_u_ratio(double m_i, double u_i, double m_j, double u_j,
+                                 double e_imp, double e_threshold, double s_c) {
+  const double w = log_step(e_imp, e_threshold, 0.1);
+  const double hs = ln_u_ratio_hit_and_stick(m_i, u_i, m_j, u_j);
+  if (w == 0.0) return hs;
+  return (1.0 - w) * hs + w * ln_u_ratio_compression(m_i, u_i, m_j, u_j, s_c);
+}
+
+//! Impact energy of a pair, E = (1/2) mu dv^2, mu = m_i m_j / (m_i + m_j) (spec §15.3)
+//! [erg].
+inline double impact_energy(double m_i, double m_j, double dv) {
+  return 0.5 * (m_i * m_j / (m_i + m_j)) * dv * dv;
+}
+
+}  // namespace panoptic::physics::coagulation

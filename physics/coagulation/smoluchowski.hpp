@@ -1,0 +1,426 @@
+#pragma once
+//! The Smoluchowski coagulation equation of one cell on the mass grid (spec §15.2):
+//!   d sigma_k/dt = sum over pairs (i >= j) of [mass gained by bin k - mass lost by bin
+//!                  k] * R_ij,   R_ij = c_ij K_ij n_i n_j,  n_i = sigma_i / m_i,
+//! c_ij = 1/2 for i = j (each pair of particles counted once), 1 otherwise. K_ij [cm^2
+//! s^-1] is supplied per cell (physics/coagulation/collision_kernel.hpp for the disk's
+//! kernel; any symmetric matrix, e.g. the analytic kernels of the tests), and so is the
+//! probability p_ij that the pair fragments rather than sticks.
+//!
+//! Outcomes of a pair (larger partner i, smaller j), after DustPy's default model
+//! (Stammler & Birnstiel 2022; dustpy/std/dust.f90, coagulation_parameters and s_coag,
+//! read for its rules, not copied):
+//! * sticking (rate (1 - p) R): the product m_i + m_j lies between two bins k, k+1 and
+//!   is replaced by eps particles of m_k and 1 - eps of m_{k+1}, eps = (m_{k+1} - m_i -
+//!   m_j)/(m_{k+1} - m_k), which conserves number and mass (Kovetz & Olund 1969; Brauer,
+//!   Dullemond & Henning 2008, appendix A.1). Where the product falls into the target's
+//!   own bin (k = i, m_j < m_{i+1} - m_i) the net change of bin i, -(1 - eps) m_i =
+//!   -m_i m_j/(m_{i+1} - m_i), is written without the cancelling terms (Brauer et al.
+//!   2008, appendix A.2): mass stays conserved to round-off for any mass ratio, also
+//!   where m_i + m_j rounds to m_i. Products beyond the last bin do not stick (as in
+//!   DustPy): the grid must reach beyond the largest mass of interest.
+//! * full fragmentation (rate p R, m_i / m_j up to erosion_mass_ratio bins apart): both
+//!   partners turn into fragments of total mass m_i + m_j, distributed as n(m) ∝
+//!   m^fragment_slope (DustPy and Birnstiel et al. 2010: -11/6) up to the larger
+//!   partner's bin: the mass fraction of bin k <= q is m_k^(2 + slope) / Z_q.
+//! * cratering (rate p R, mass ratio beyond erosion_mass_ratio): the target keeps m_i -
+//!   eps_c m_j (split between two bins like a sticking product), and (1 + eps_c) m_j
+//!   go into fragments up to the projectile's bin (DustPy's "excavated mass" eps_c = 1;
+//!   the target loses eps_eros m_proj of Krijt et al. 2015, spec §5.1, §15.2).
+//!
+//! With porosity each bin also carries psi_k = sigma_k <1/phi>_m [g cm^-2], rho0 times
+//! the volume of its aggregates per unit area: the volume-averaging method of Okuzumi,
+//! Tanaka & Sakagami (2009), whose bins carry mass and the mass-weighted mean volume
+//! measure (spec §15.1). u_k = psi_k / sigma_k = <1/phi>_m of the bin. A sticking product
+//! of specific volume u_p is split into its two bins in proportion to mass, so its
+//! volume m_p u_p is booked exactly; fragments and remnants keep their parents' specific
+//! volume (spec §15.3), so fragmentation conserves psi exactly. The product's u_p comes
+//! per pair as d_ij = ln(u_p / u_i) (physics/coagulation/porosity.hpp), and a relaxation
+//! up to the static compaction floor per bin (spec §4.3-§4.4, §15.3) may be added.
+//!
+//! The Jacobian is analytic and dense per cell, with K, p, d and the floors held fixed
+//! (they depend on the state only through the filling factors). For the compact model it
+//! is exact. Rows and columns are ordered (sigma_0 ... sigma_{N-1}[, psi_0 ...]),
+//! row-major.
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+#include "physics/coagulation/mass_grid.hpp"
+#include "physics/smooth_switches.hpp"
+
+namespace panoptic::physics::coagulation {
+
+//! Outcome model of fragmenting pairs (DustPy's defaults: dustpy/simulation.py,
+//! ini.dust.erosionMassRatio, excavatedMass, fragmentDistribution).
+struct FragmentationModel {
+  //! Pairs whose mass ratio exceeds this (measured in whole bins, as DustPy) crater
+  //! instead of fragmenting fully [-].
+  double erosion_mass_ratio = 10.0;
+  //! Target mass excavated per projectile mass in cratering (eps_eros of spec §5.1) [-].
+  double excavated_mass = 1.0;
+  //! Fragment distribution n(m) ∝ m^slope [-].
+  double fragment_slope = -11.0 / 6.0;
+};
+
+//! What the engine needs of one cell: the kernel and, optionally, the fragmentation
+//! probability, the porosity of sticking products and the compaction floors. Pair
+//! matrices are N x N, row-major, read at (i, j) with i >= j.
+struct CellCoefficients {
+  std::vector<double> kernel;      //!< K_ij [cm^2 s^-1] (rate per area K n_i n_j)
+  std::vector<double> p_frag;      //!< fragmentation probability [-]; empty: all stick
+  std::vector<double> ln_u_ratio;  //!< porous: ln(u_p / u_i) of the product [-]; empty: 0
+  std::vector<double> ln_phi_floor;  //!< porous, per bin: ln of the compaction floor
+  std::vector<double> relax_rate;    //!< porous, per bin: 1 / t_relax [s^-1]
+};
+
+//! Softplus sharpness of the push up to the floor (as physics/compaction.hpp) [-].
+inline constexpr double kFloorSharpness = 100.0;
+
+class Smoluchowski {
+ public:
+  explicit Smoluchowski(MassGrid grid, FragmentationModel frag = {})
+      : grid_(std::move(grid)), frag_(frag), n_(grid_.size()) {
+    const auto& m = grid_.m;
+    if (frag_.excavated_mass >= frag_.erosion_mass_ratio)
+      throw std::invalid_argument(
+          "Smoluchowski: excavated_mass must be < erosion_mass_ratio");
+    // pairs more than crater_bins_ bins apart crater (DustPy: p = floor(log10(ratio)/a))
+    crater_bins_ = static_cast<int>(
+        std::floor(std::log10(frag_.erosion_mass_ratio) * grid_.bins_per_decade + 1e-9));
+    pairs_.resize(static_cast<std::size_t>(n_) * (n_ + 1) / 2);
+    for (int i = 0; i < n_; ++i) {
+      for (int j = 0; j <= i; ++j) {
+        Pair& p = pairs_[pair_index(i, j)];
+        const double mp = m[i] + m[j];
+        if (mp < m[n_ - 1]) {
+          int k = lower_bin(mp);
+          if (k < i) k = i;  // m_i + m_j rounded to m_i: the product is in bin i
+          p.k = k;
+          if (k == i) {  // Brauer et al. 2008, A.2: no cancelling terms
+            const double delta = m[i + 1] - m[i];
+            p.loss_i = -m[i] * m[j] / delta;  // -(1 - eps) m_i
+            p.gain_lo = m[i] + p.loss_i;      // eps m_i (psi only)
+            p.gain_hi = m[j] * m[i + 1] / delta;
+          } else {  // Brauer et al. 2008, A.1
+            const double eps = (m[k + 1] - mp) / (m[k + 1] - m[k]);
+            p.loss_i = -m[i];
+            p.gain_lo = eps * m[k];
+            p.gain_hi = (1.0 - eps) * m[k + 1];
+          }
+        }
+        if (i - j > crater_bins_) {  // cratering: remnant m_i - x, fragments (1 + e) m_j
+          p.crater = true;
+          const double x = frag_.excavated_mass * m[j];
+          p.excavated = x;
+          p.frag_mass = m[j] + x;
+          p.frag_bin = j;
+          if (x <= m[i] - m[i - 1]) {  // remnant in (m_{i-1}, m_i]: no cancelling terms
+            const double delta = m[i] - m[i - 1];
+            p.rem_bin = i - 1;
+            p.rem_same = true;
+            p.target_net = -m[i] * x / delta;
+            p.rem_lo = m[i - 1] * x / delta;
+          } else {
+            const double mrm = m[i] - x;
+            const int r = lower_bin(mrm);
+            if (r < 0)
+              throw std::invalid_argument("Smoluchowski: remnant below the grid");
+            const double e = (m[r + 1] - mrm) / (m[r + 1] - m[r]);
+            p.rem_bin = r;
+            p.target_net = -m[i];
+            p.rem_lo = e * m[r];
+            p.rem_hi = (1.0 - e) * m[r + 1];
+          }
+        } else {
+          p.frag_mass = m[i] + m[j];
+          p.frag_bin = i;
+        }
+      }
+    }
+    // fragment distribution: mass fraction of bin k <= q is w_k / Z_q (DustPy phiFrag)
+    weight_.resize(n_);
+    inv_z_.resize(n_);
+    double z = 0.0;
+    for (int k = 0; k < n_; ++k) {
+      weight_[k] = std::pow(m[k] / m[0], 2.0 + frag_.fragment_slope);
+      z += weight_[k];
+      inv_z_[k] = 1.0 / z;
+    }
+  }
+
+  const MassGrid& grid() const { return grid_; }
+  int size() const { return n_; }
+  const FragmentationModel& fragmentation() const { return frag_; }
+
+  //! Bins apart beyond which a pair craters [-].
+  int crater_bins() const { return crater_bins_; }
+
+  //! d sigma/dt (and d psi/dt if psi is not empty) [g cm^-2 s^-1]. Overwrites the
+  //! outputs. Not thread-safe (scratch).
+  void rhs(const CellCoefficients& c, std::span<const double> sigma,
+           std::span<const double> psi, std::span<double> dsigma,
+           std::span<double> dpsi) const {
+    const int n = n_;
+    const auto& m = grid_.m;
+    const bool porous = !psi.empty();
+    const bool frag = !c.p_frag.empty();
+    const bool has_d = porous && !c.ln_u_ratio.empty();
+    std::fill(dsigma.begin(), dsigma.end(), 0.0);
+    if (porous) std::fill(dpsi.begin(), dpsi.end(), 0.0);
+    num_.resize(n);
+    frag_mass_.assign(n, 0.0);
+    frag_psi_.assign(n, 0.0);
+    for (int k = 0; k < n; ++k) num_[k] = sigma[k] / m[k];
+    for (int i = 0; i < n; ++i) {
+      if (num_[i] == 0.0) continue;
+      for (int j = 0; j <= i; ++j) {
+        if (num_[j] == 0.0) continue;
+        const Pair& p = pairs_[pair_index(i, j)];
+        const std::size_t ij = static_cast<std::size_t>(i) * n + j;
+        const double kk = (i == j ? 0.5 : 1.0) * c.kernel[ij];
+        const double rate = kk * num_[i] * num_[j];
+        const double pf = frag ? c.p_frag[ij] : 0.0;
+        const double r_stick = (1.0 - pf) * rate;
+        if (p.k >= 0 && r_stick != 0.0) {
+          dsigma[j] -= m[j] * r_stick;
+          dsigma[i] += p.loss_i * r_stick;
+          if (p.k != i) dsigma[p.k] += p.gain_lo * r_stick;
+          dsigma[p.k + 1] += p.gain_hi * r_stick;
+          if (porous) {
+            // u_i R and u_j R: the partners' volume measure per collision, written with
+            // psi (m_i u_i n_i = psi_i) so that an empty bin needs no u
+            const double ut = psi[i] * (1.0 - pf) * kk * num_[j] / m[i];
+            const double uj = psi[j] * (1.0 - pf) * kk * num_[i] / m[j];
+            const double d = has_d ? c.ln_u_ratio[ij] : 0.0;
+            const double ed = std::exp(d);
+            dpsi[j] -= m[j] * uj;
+            if (p.k == i) {
+              dpsi[i] += (p.loss_i + p.gain_lo * std::expm1(d)) * ut;
+            } else {
+              dpsi[i] -= m[i] * ut;
+              dpsi[p.k] += p.gain_lo * ed * ut;
+            }
+            dpsi[p.k + 1] += p.gain_hi * ed * ut;
+          }
+        }
+        const double r_frag = pf * rate;
+        if (r_frag == 0.0) continue;
+        dsigma[j] -= m[j] * r_frag;
+        frag_mass_[p.frag_bin] += p.frag_mass * r_frag;
+        if (p.crater) {
+          dsigma[i] += p.target_net * r_frag;
+          dsigma[p.rem_bin] += p.rem_lo * r_frag;
+          if (!p.rem_same) dsigma[p.rem_bin + 1] += p.rem_hi * r_frag;
+        } else {
+          dsigma[i] -= m[i] * r_frag;
+        }
+        if (porous) {
+          const double ut = psi[i] * pf * kk * num_[j] / m[i];
+          const double uj = psi[j] * pf * kk * num_[i] / m[j];
+          dpsi[j] -= m[j] * uj;
+          if (p.crater) {
+            dpsi[i] += p.target_net * ut;
+            dpsi[p.rem_bin] += p.rem_lo * ut;
+            if (!p.rem_same) dpsi[p.rem_bin + 1] += p.rem_hi * ut;
+            frag_psi_[p.frag_bin] += m[j] * uj + p.excavated * ut;
+          } else {
+            dpsi[i] -= m[i] * ut;
+            frag_psi_[p.frag_bin] += m[i] * ut + m[j] * uj;
+          }
+        }
+      }
+    }
+    if (frag) {
+      spread_fragments(frag_mass_, dsigma);
+      if (porous) spread_fragments(frag_psi_, dpsi);
+    }
+    if (porous && !c.ln_phi_floor.empty()) {
+      for (int k = 0; k < n; ++k) {
+        if (sigma[k] <= 0.0 || psi[k] <= 0.0) continue;
+        // spec §4.4: d ln phi/dt = softplus_100(ln floor - ln phi) / t_relax, i.e.
+        // d psi/dt = -psi d ln phi/dt at fixed sigma
+        const double z = c.ln_phi_floor[k] - std::log(sigma[k] / psi[k]);
+        dpsi[k] -= psi[k] * softplus(z, kFloorSharpness) * c.relax_rate[k];
+      }
+    }
+  }
+
+  //! The dense Jacobian d(dsigma, dpsi)/d(sigma, psi), row-major, nv x nv with nv = N
+  //! (compact, psi empty) or 2N; K, p, d and the floors fixed. Overwrites jac.
+  void jacobian(const CellCoefficients& c, std::span<const double> sigma,
+                std::span<const double> psi, std::span<double> jac) const {
+    const int n = n_;
+    const auto& m = grid_.m;
+    const bool porous = !psi.empty();
+    const int nv = porous ? 2 * n : n;
+    const bool frag = !c.p_frag.empty();
+    const bool has_d = porous && !c.ln_u_ratio.empty();
+    std::fill(jac.begin(), jac.end(), 0.0);
+    num_.resize(n);
+    for (int k = 0; k < n; ++k) num_[k] = sigma[k] / m[k];
+    // fragments per column and largest-fragment bin, spread at the end
+    g_mass_.assign(static_cast<std::size_t>(nv) * n, 0.0);
+    if (porous) g_psi_.assign(static_cast<std::size_t>(nv) * n, 0.0);
+    auto at = [&](int row, int col) -> double& {
+      return jac[static_cast<std::size_t>(row) * nv + col];
+    };
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j <= i; ++j) {
+        if (num_[i] == 0.0 && num_[j] == 0.0) continue;
+        const Pair& p = pairs_[pair_index(i, j)];
+        const std::size_t ij = static_cast<std::size_t>(i) * n + j;
+        const double kk = (i == j ? 0.5 : 1.0) * c.kernel[ij];
+        const double pf = frag ? c.p_frag[ij] : 0.0;
+        for (int outcome = 0; outcome < 2; ++outcome) {
+          const double f = outcome == 0 ? 1.0 - pf : pf;
+          if (f == 0.0) continue;
+          if (outcome == 0 && p.k < 0) continue;
+          // R = f kk n_i n_j: dR/dsigma_i, dR/dsigma_j
+          const double dri = f * kk * num_[j] / m[i];
+          const double drj = f * kk * num_[i] / m[j];
+          auto mass = [&](int row, double coef) {
+            at(row, i) += coef * dri;
+            at(row, j) += coef * drj;
+          };
+          // u_t = psi_i f kk n_j / m_i and u_j = psi_j f kk n_i / m_j
+          const double dut_dpsi = f * kk * num_[j] / m[i];
+          const double dut_dsj = porous ? psi[i] * f * kk / (m[i] * m[j]) : 0.0;
+          const double duj_dpsi = f * kk * num_[i] / m[j];
+          const double duj_dsi = porous ? psi[j] * f * kk / (m[i] * m[j]) : 0.0;
+          auto vol_t = [&](int row, double coef) {
+            at(n + row, n + i) += coef * dut_dpsi;
+            at(n + row, j) += coef * dut_dsj;
+          };
+          auto vol_j = [&](int row, double coef) {
+            at(n + row, n + j) += coef * duj_dpsi;
+            at(n + row, i) += coef * duj_dsi;
+          };
+          if (outcome == 0) {
+            mass(j, -m[j]);
+            mass(i, p.loss_i);
+            if (p.k != i) mass(p.k, p.gain_lo);
+            mass(p.k + 1, p.gain_hi);
+            if (porous) {
+              const double d = has_d ? c.ln_u_ratio[ij] : 0.0;
+              const double ed = std::exp(d);
+              vol_j(j, -m[j]);
+              if (p.k == i) {
+                vol_t(i, p.loss_i + p.gain_lo * std::expm1(d));
+              } else {
+                vol_t(i, -m[i]);
+                vol_t(p.k, p.gain_lo * ed);
+              }
+              vol_t(p.k + 1, p.gain_hi * ed);
+            }
+            continue;
+          }
+          mass(j, -m[j]);
+          if (p.crater) {
+            mass(i, p.target_net);
+            mass(p.rem_bin, p.rem_lo);
+            if (!p.rem_same) mass(p.rem_bin + 1, p.rem_hi);
+          } else {
+            mass(i, -m[i]);
+          }
+          const std::size_t q = p.frag_bin;
+          g_mass_[static_cast<std::size_t>(i) * n + q] += p.frag_mass * dri;
+          g_mass_[static_cast<std::size_t>(j) * n + q] += p.frag_mass * drj;
+          if (porous) {
+            vol_j(j, -m[j]);
+            // fragments' volume: m_j u_j + (crater ? x : m_i) u_t
+            const double ct = p.crater ? p.excavated : m[i];
+            if (p.crater) {
+              vol_t(i, p.target_net);
+              vol_t(p.rem_bin, p.rem_lo);
+              if (!p.rem_same) vol_t(p.rem_bin + 1, p.rem_hi);
+            } else {
+              vol_t(i, -m[i]);
+            }
+            auto g = [&](int col) -> double& {
+              return g_psi_[static_cast<std::size_t>(col) * n + q];
+            };
+            g(n + i) += ct * dut_dpsi;
+            g(j) += ct * dut_dsj;
+            g(n + j) += m[j] * duj_dpsi;
+            g(i) += m[j] * duj_dsi;
+          }
+        }
+      }
+    }
+    if (frag) {
+      for (int col = 0; col < nv; ++col) {
+        spread_column(&g_mass_[static_cast<std::size_t>(col) * n], 0, col, jac, nv);
+        if (porous)
+          spread_column(&g_psi_[static_cast<std::size_t>(col) * n], n, col, jac, nv);
+      }
+    }
+    if (porous && !c.ln_phi_floor.empty()) {
+      for (int k = 0; k < n; ++k) {
+        if (sigma[k] <= 0.0 || psi[k] <= 0.0) continue;
+        // T = -psi softplus(z) r, z = ln floor - ln sigma + ln psi
+        const double z = c.ln_phi_floor[k] - std::log(sigma[k] / psi[k]);
+        const double sp = softplus(z, kFloorSharpness);
+        const double lg = logistic_step(z, kFloorSharpness);
+        const double r = c.relax_rate[k];
+        at(n + k, n + k) += -(sp + lg) * r;
+        at(n + k, k) += psi[k] * lg * r / sigma[k];
+      }
+    }
+  }
+
+ private:
+  struct Pair {
+    int k = -1;           //!< lower bin of the sticking product; -1: beyond the grid
+    double loss_i = 0.0;  //!< mass change of bin i per sticking collision [g]
+    double gain_lo = 0.0, gain_hi = 0.0;  //!< mass into bins k, k+1 [g]
+    bool crater = false;
+    int frag_bin = 0;                   //!< bin of the largest fragment
+    double frag_mass = 0.0;             //!< mass of the fragments [g]
+    double excavated = 0.0;             //!< target mass excavated in cratering [g]
+    int rem_bin = 0;                    //!< lower bin of the cratering remnant
+    bool rem_same = false;              //!< remnant between bins i-1 and i
+    double target_net = 0.0;            //!< mass change of bin i per cratering [g]
+    double rem_lo = 0.0, rem_hi = 0.0;  //!< remnant mass into rem_bin, rem_bin+1 [g]
+  };
+
+  static std::size_t pair_index(int i, int j) {
+    return static_cast<std::size_t>(i) * (i + 1) / 2 + j;
+  }
+
+  //! k with m_k <= x < m_{k+1}; -1 below the grid.
+  int lower_bin(double x) const {
+    const auto& m = grid_.m;
+    const auto it = std::upper_bound(m.begin(), m.end(), x);
+    return static_cast<int>(it - m.begin()) - 1;
+  }
+
+  //! out_k += w_k sum_{q >= k} src_q / Z_q.
+  void spread_fragments(const std::vector<double>& src, std::span<double> out) const {
+    double suffix = 0.0;
+    for (int k = n_ - 1; k >= 0; --k) {
+      suffix += src[k] * inv_z_[k];
+      out[k] += weight_[k] * suffix;
+    }
+  }
+  void spread_column(const double* src, int row0, int col, std::span<double> jac,
+                     int nv) const {
+    double suffix = 0.0;
+    for (int k = n_ - 1; k >= 0; --k) {
+      suffix += src[k] * inv_z_[k];
+      jac[static_cast<std::size_t>(row0 + k) * nv + col] += weight_[k] * suffix;
+    }
+  }
+
+  MassGrid grid_;
+  FragmentationModel frag_;
+  int n_ = 0;
+  int crater_bins_ = 0;
+  std::vector<Pair> pairs_;
+  std::vector<double> weight_, inv_z_;
+  mutable std::vector<double> num_, frag_mass_, frag_psi_, g_mass_, g_psi_;
+};
+
+}  // namespace panoptic::physics::coagulation

@@ -1,0 +1,92 @@
+//! Cost of the one-cell coagulation engine (physics/coagulation, spec §15) at DustPy's
+//! resolution, 120 bins (1e-12 ... 1e5 g, 7 per decade), compact and porous: one
+//! right-hand side, one dense analytic Jacobian, one rebuild of the cell's coefficients
+//! (kernel, pair speeds, fragmentation probabilities, product porosity, floors) and one
+//! dense LU of the Newton matrix, to plan the disk-wide solver of issue 35 (100 cells x
+//! 120 bins x 2). Results: tests/bench/results/coagulation_cell.md.
+//!   build/tests/bench_coagulation [repeats]
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <vector>
+
+#include "physics/coagulation/cell_coefficients.hpp"
+#include "physics/coagulation/mass_grid.hpp"
+#include "physics/coagulation/smoluchowski.hpp"
+#include "physics/contact_mechanics.hpp"
+#include "physics/particle.hpp"
+#include "tests/unit/support/mmsn_gas.hpp"
+
+using namespace panoptic::physics;
+using namespace panoptic::physics::coagulation;
+
+namespace {
+
+//! Median wall time of `f` over `repeats` calls [s].
+double time_it(int repeats, const std::function<void()>& f) {
+  std::vector<double> t(repeats);
+  for (int r = 0; r < repeats; ++r) {
+    const auto a = std::chrono::steady_clock::now();
+    f();
+    const auto b = std::chrono::steady_clock::now();
+    t[r] = std::chrono::duration<double>(b - a).count();
+  }
+  std::sort(t.begin(), t.end());
+  return t[repeats / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repeats = argc > 1 ? std::atoi(argv[1]) : 50;
+  const LocalGas gas = mmsn_gas(5.0);
+  const MonomerMaterial ice = ice_material();
+  CellModel model;
+  model.species.a0 = ice.a0;
+  model.species.rho0 = ice.rho0;
+  model.species.m0 = monomer_mass(ice.a0, ice.rho0);
+  model.species.e_roll = 4.74e-9;
+  model.outcomes.fragmentation = true;
+  model.outcomes.cratering = true;
+  model.outcomes.v_frag = 100.0;
+  model.outcomes.v_eros = 100.0;
+  const Smoluchowski eng(MassGrid(1e-12, 1e5, 7.0));
+  const int n = eng.size();
+  std::vector<double> sigma(n), psi(n);
+  for (int k = 0; k < n; ++k) {
+    sigma[k] = 1e-3 * std::pow(eng.grid().m[k] / 1e-12, 1.0 / 6.0) *
+               std::exp(-eng.grid().m[k] / 1e2);
+    psi[k] = sigma[k] * std::exp(0.05 * k);
+  }
+  std::printf(
+      "| cell | bins | unknowns | coefficients [us] | RHS [us] | Jacobian [us] | dense "
+      "LU [us] |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  for (const bool porous : {false, true}) {
+    const std::span<const double> p =
+        porous ? std::span<const double>(psi) : std::span<const double>();
+    const int nv = porous ? 2 * n : n;
+    CellCoefficients c = cell_coefficients(eng, sigma, p, gas, model);
+    std::vector<double> ds(n), dp(porous ? n : 0), jac(static_cast<std::size_t>(nv) * nv);
+    const double t_coef = time_it(std::max(3, repeats / 10), [&] {
+      c = cell_coefficients(eng, sigma, p, gas, model);
+    });
+    const double t_rhs = time_it(repeats, [&] { eng.rhs(c, sigma, p, ds, dp); });
+    const double t_jac = time_it(repeats, [&] { eng.jacobian(c, sigma, p, jac); });
+    // the Newton matrix I - gamma J of one cell, factorised densely
+    Eigen::MatrixXd a(nv, nv);
+    for (int r = 0; r < nv; ++r)
+      for (int q = 0; q < nv; ++q)
+        a(r, q) = (r == q ? 1.0 : 0.0) - 1e3 * jac[static_cast<std::size_t>(r) * nv + q];
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(nv);
+    const double t_lu = time_it(repeats, [&] { lu.compute(a); });
+    std::printf("| %s | %d | %d | %.0f | %.0f | %.0f | %.0f |\n",
+                porous ? "porous" : "compact", n, nv, 1e6 * t_coef, 1e6 * t_rhs,
+                1e6 * t_jac, 1e6 * t_lu);
+  }
+  return 0;
+}
