@@ -1,6 +1,8 @@
 """Diagnostic figures of one run: dust surface density and dust-to-gas ratio vs radius.
 
-    python3 -m postprocess.plot RUN.h5 [-o OUTDIR] [--times-yr 1e3,1e4,...]
+    panoptic-plot-profiles RUN.h5 [-o OUTDIR] [--times-yr 1e3,1e4,...] [--format pdf]
+                           [--no-footer] [--title T] [--size column]
+    (in the repository: python3 -m postprocess.plot RUN.h5 ...)
 
 writes OUTDIR/sigma_d.png and OUTDIR/dust_to_gas.png (default OUTDIR: RUN_plots/ next
 to RUN.h5) and prints the paths. One curve per snapshot, coloured by log time; by
@@ -12,11 +14,10 @@ import sys
 
 import numpy as np
 from matplotlib import colormaps, colors, ticker
-from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.cm import ScalarMappable
-from matplotlib.figure import Figure
 
-from postprocess.reader import load_run
+from . import style
+from .reader import load_run
 
 MAX_CURVES = 12
 DECADES_SHOWN = 8   # y axis spans at most this many decades below the largest value
@@ -74,11 +75,14 @@ def time_norm(times):
     return colors.LogNorm(vmin=vmin if vmin < vmax else vmax / 10.0, vmax=vmax)
 
 
-def new_figure():
-    """Empty Agg-backed figure with one axes, log-log."""
-    fig = Figure(figsize=(6.4, 4.4), dpi=150, layout="constrained")
-    FigureCanvasAgg(fig)
-    ax = fig.add_subplot()
+def new_figure(ax=None):
+    """Empty Agg-backed figure with one axes, log-log; or the figure of `ax`, made
+    log-log."""
+    if ax is None:
+        fig = style.new_figure(6.4, 4.4)
+        ax = fig.add_subplot()
+    else:
+        fig = ax.figure
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.grid(True, which="major", color="0.88", lw=0.6)
@@ -153,9 +157,10 @@ def label_minor_log_ticks(axis, lo, hi):
         axis.set_major_formatter(ticker.FuncFormatter(lambda x, _: f"{x:g}"))
 
 
-def finish(fig, ax, run, indices, norm, ylabel, out_path):
-    """Labels, time colour bar, legend, title and provenance; save to out_path. The title
-    gives t_end, or for an unfinished run (killed, stopped or failed) its last snapshot."""
+def finish(fig, ax, run, indices, norm, ylabel, out_path, own=True):
+    """Labels, time colour bar, legend, title and provenance (own: the figure was made
+    here, not given through ax=); save to out_path. The title gives t_end, or for an
+    unfinished run (killed, stopped or failed) its last snapshot."""
     ax.set_xlim(run.r_f[0], run.r_f[-1])
     label_minor_log_ticks(ax.xaxis, run.r_f[0], run.r_f[-1])  # a grid of < 2 decades
     ax.set_xlabel(r"$r$ [au]")
@@ -165,13 +170,13 @@ def finish(fig, ax, run, indices, norm, ylabel, out_path):
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="best", fontsize=8, frameon=False)
     last = format_years(run.time[-1])
-    ax.set_title(f"{run.scene or 'run'}: " + (f"$t_\\mathrm{{end}}$ = {last}" if run.finished
-                                              else f"unfinished, last snapshot {last}"),
-                 fontsize=11)
-    fig.text(0.995, 0.005, _provenance(run), ha="right", va="bottom", fontsize=6,
-             color="0.5")
+    ax.set_title(style.title(f"{run.scene or 'run'}: " + (
+        f"$t_\\mathrm{{end}}$ = {last}" if run.finished
+        else f"unfinished, last snapshot {last}")), fontsize="large")
+    if own:
+        style.footer(fig, _provenance(run))
     if out_path is not None:  # None: only the Figure, returned (a notebook)
-        fig.savefig(out_path)
+        style.savefig(fig, out_path)
     return fig
 
 
@@ -181,26 +186,31 @@ def _provenance(run):
     return f"{os.path.basename(run.path)}   panoptic {run.attrs.get('version', '?')} ({sha})"
 
 
-def plot_sigma_d(run, indices, out_path):
-    """Figure of Sigma_d(r) [g cm^-2] at the snapshots `indices`, gas and snow line."""
-    fig, ax = new_figure()
+def plot_sigma_d(run, indices=None, out_path=None, ax=None):
+    """Figure of Sigma_d(r) [g cm^-2] at the snapshots `indices` (default:
+    select_snapshots), gas and snow line; into `ax` if given. Returns the Figure."""
+    indices = select_snapshots(run.time) if indices is None else indices
+    fig, ax, own = (*new_figure(ax), ax is None)
     plot_gas(ax, run, indices)
     norm = plot_profiles(ax, run, run.snapshots["sigma_d"], indices)
     mark_snow_line(ax, run)
     set_log_ylim(ax, [run.snapshots[name][indices] for name in ("sigma_d", "sigma_g")])
-    return finish(fig, ax, run, indices, norm, r"$\Sigma_\mathrm{d}$ [g cm$^{-2}$]", out_path)
+    return finish(fig, ax, run, indices, norm, r"$\Sigma_\mathrm{d}$ [g cm$^{-2}$]", out_path,
+                  own)
 
 
-def plot_dust_to_gas(run, indices, out_path):
-    """Figure of Sigma_d / Sigma_g(r) [] at the snapshots `indices`, and snow line."""
+def plot_dust_to_gas(run, indices=None, out_path=None, ax=None):
+    """Figure of Sigma_d / Sigma_g(r) [] at the snapshots `indices` (default:
+    select_snapshots), and snow line; into `ax` if given. Returns the Figure."""
+    indices = select_snapshots(run.time) if indices is None else indices
     sigma_d, sigma_g = run.snapshots["sigma_d"], run.snapshots["sigma_g"]
     ratio = np.divide(sigma_d, sigma_g, out=np.full(sigma_d.shape, np.nan), where=sigma_g > 0)
-    fig, ax = new_figure()
+    fig, ax, own = (*new_figure(ax), ax is None)
     norm = plot_profiles(ax, run, ratio, indices)
     mark_snow_line(ax, run)
     set_log_ylim(ax, [ratio[indices]])
     return finish(fig, ax, run, indices, norm, r"$\Sigma_\mathrm{d}\,/\,\Sigma_\mathrm{g}$",
-                  out_path)
+                  out_path, own)
 
 
 def default_outdir(run_path):
@@ -218,14 +228,20 @@ def parse_times(text):
 
 def main(argv=None):
     """Command-line entry point; returns the exit status."""
-    parser = argparse.ArgumentParser(prog="python3 -m postprocess.plot", description=__doc__,
+    parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("run", help="run file (HDF5) written by panoptic")
     parser.add_argument("-o", "--outdir", help="output directory (default: RUN_plots/)")
     parser.add_argument("--times-yr", type=parse_times,
                         help="comma-separated times [yr]; the nearest snapshots are plotted")
+    style.add_cli_options(parser)
     args = parser.parse_args(argv)
+    with style.from_cli(args):
+        return _main(args)
 
+
+def _main(args):
+    """main() inside the style options of the command line."""
     run = load_run(args.run)
     if run.n_snapshots == 0:
         print(f"{args.run}: no snapshots to plot", file=sys.stderr)
@@ -235,7 +251,7 @@ def main(argv=None):
     outdir = args.outdir or default_outdir(args.run)
     os.makedirs(outdir, exist_ok=True)
     for name, make in (("sigma_d.png", plot_sigma_d), ("dust_to_gas.png", plot_dust_to_gas)):
-        path = os.path.join(outdir, name)
+        path = os.path.join(outdir, style.file_name(name))
         make(run, indices, path)
         print(path)
     return 0

@@ -1,6 +1,8 @@
 """Every diagnostic figure of one run, with one command.
 
-    python3 -m postprocess.plot_run RUN.h5 [-o OUTDIR]
+    panoptic-plot RUN.h5 [-o OUTDIR] [--format png|pdf|svg] [--no-footer] [--title T]
+                  [--size column|page|INCHES]
+    (in the repository: python3 -m postprocess.plot_run RUN.h5 ...)
 
 writes into OUTDIR (default: RUN_plots/ next to RUN.h5) and prints the path of each:
     sigma_d.png, dust_to_gas.png  Sigma_d(r) and Sigma_d/Sigma_g(r) at up to 12 times
@@ -19,7 +21,9 @@ writes into OUTDIR (default: RUN_plots/ next to RUN.h5) and prints the path of e
 A figure whose data the file lacks (transport-only runs have no a, phi or planetesimal
 fields; older files no /timeseries, whose figures then use the snapshots) is skipped with
 a note on stderr; an unfinished (killed) run is marked in the titles. Exit status 0 when
-every figure that could be made was written, 1 otherwise.
+every figure that could be made was written, 1 otherwise. Every plot_* function returns
+its Figure, draws into a given `ax=` (then the caller's figure keeps its size, title and
+footer), and writes nothing when out_path is None.
 """
 import argparse
 import os
@@ -28,13 +32,12 @@ import traceback
 
 import numpy as np
 from matplotlib import colormaps, colors, patheffects, ticker
-from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import LineCollection, PolyCollection
-from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from postprocess import plot
-from postprocess.reader import BUILT_IN_BUDGET_TERMS, M_EARTH, MYR, load_run
+from . import plot, style
+from .reader import BUILT_IN_BUDGET_TERMS, M_EARTH, MYR, load_run
 
 FORMED_FRACTION = 1e-6        # Sigma_pl > this x the largest initial Sigma_d: formed
                               # (src/run/diagnostics.cpp; /summary/formed_threshold)
@@ -45,8 +48,11 @@ LINE_DECADES = 6              # y range of the time-series panels
 BUDGET_DECADES = 10           # y range of the mass-budget panel, below the initial mass
 OUTLINE = [patheffects.withStroke(linewidth=2.6, foreground="k")]
 SNOW_STYLE = {"color": "w", "ls": (0, (5, 3)), "lw": 1.3, "path_effects": OUTLINE}
-T_FIRST_STYLE = {"color": "tab:red", "lw": 1.6, "marker": ".", "ms": 3.0, "zorder": 3,
-                 "path_effects": [patheffects.withStroke(linewidth=3.2, foreground="w")]}
+# t_first_pl(r): a thin red line with a thin black edge, visible on every colour map
+# (a wide white halo merged into a white band where t_first_pl is flat); drawn and
+# put in the legend with the same style
+T_FIRST_STYLE = {"color": "#ff3030", "lw": 1.3, "zorder": 3,
+                 "path_effects": [patheffects.withStroke(linewidth=2.3, foreground="k")]}
 ZONE_HATCH, ZONE_HATCH_COLOR = "//", "0.9"    # planetesimal-forming zone: sparse hatch,
 ZONE_EDGE_STYLE = {"colors": "w", "linewidths": 1.0,     # outlined along the cell edges
                    "path_effects": [patheffects.withStroke(linewidth=2.4, foreground="k")]}
@@ -101,11 +107,15 @@ def axis_label(quantity, unit):
     return f"{quantity} [{unit_tex(unit)}]" if unit else quantity
 
 
-def new_figure(nrows=1, height=4.6, sharex=True):
-    """Agg-backed figure with nrows axes stacked vertically (log x), and the axes."""
-    fig = Figure(figsize=(6.4, height), dpi=150, layout="constrained")
-    FigureCanvasAgg(fig)
-    axes = fig.subplots(nrows, 1, sharex=sharex, squeeze=False)[:, 0]
+def new_figure(nrows=1, height=4.6, sharex=True, ax=None):
+    """Agg-backed figure with nrows axes stacked vertically (log x), and the axes; given
+    `ax` (one axes or a sequence of nrows), their figure and them."""
+    if ax is not None:
+        axes = list(ax) if np.iterable(ax) else [ax]
+        fig = axes[0].figure
+    else:
+        fig = style.new_figure(6.4, height)
+        axes = fig.subplots(nrows, 1, sharex=sharex, squeeze=False)[:, 0]
     for ax in axes:
         ax.set_xscale("log")
         ax.grid(True, which="major", color="0.88", lw=0.6)
@@ -114,20 +124,35 @@ def new_figure(nrows=1, height=4.6, sharex=True):
 
 
 def title(run, what):
-    """Figure title: scene, what is shown, and a warning for an unfinished run."""
+    """Figure title: scene, what is shown, and a warning for an unfinished run (or the
+    --title given)."""
     text = f"{run.scene or 'run'}: {what}"
     if not run.finished:
         text += f"  [unfinished, last snapshot {plot.format_years(run.time[-1])}]"
-    return text
+    return style.title(text)
+
+
+def suptitle(fig, own, text):
+    """The figure's title, on a figure made here (own) only."""
+    if own and text:
+        fig.suptitle(text, fontsize="large")
 
 
 def save(fig, run, out_path):
-    """Provenance footer, and savefig unless out_path is None (in a notebook: every
-    plot_* function returns its Figure)."""
-    fig.text(0.995, 0.002, plot._provenance(run), ha="right", va="bottom", fontsize=6,
-             color="0.5")
+    """Provenance footer (unless --no-footer), and savefig unless out_path is None (in a
+    notebook: every plot_* function returns its Figure)."""
+    style.footer(fig, plot._provenance(run))
     if out_path is not None:
-        fig.savefig(out_path)
+        style.savefig(fig, out_path)
+
+
+def done(fig, run, out_path, own):
+    """save() a figure made here (own); a figure given through ax= only saved to
+    out_path if given (its footer is the caller's)."""
+    if own:
+        save(fig, run, out_path)
+    elif out_path is not None:
+        style.savefig(fig, out_path)
 
 
 def note(ax, text, y=0.5):
@@ -247,8 +272,9 @@ def mark_snow_line(ax, run, view=None, **style):
 
 # --- r-t maps --------------------------------------------------------------------------
 
-def plot_map(run, out_path, field, quantity, cmap, decades, vmax=None, mask_no_dust=True,
-             diverging=False, hatch_color=ZONE_HATCH_COLOR):
+def plot_map(run, out_path=None, field="St", quantity="Stokes number St", cmap="viridis",
+             decades=8, vmax=None, mask_no_dust=True, diverging=False,
+             hatch_color=ZONE_HATCH_COLOR, ax=None):
     """r-t map of a snapshot field (nt, N) (field None: Sigma_d/Sigma_g), log colours.
 
     x: r [au] (cell faces), y: snapshot times [yr] > 0 (log midpoints as edges). The
@@ -257,7 +283,8 @@ def plot_map(run, out_path, field, quantity, cmap, decades, vmax=None, mask_no_d
     a decade each side. Cells with Sigma_d < NO_DUST_FRACTION x initial Sigma_d are grey
     when mask_no_dust. Overlays: snow line, planetesimal-forming zone (Sigma_pl >
     formed_threshold, hatched in hatch_color and outlined) and
-    t_first_pl(r).
+    t_first_pl(r). MAPS holds the arguments of the four maps plot_run writes. Into `ax`
+    if given; returns the Figure.
     """
     snaps = run.snapshots
     if field is None:
@@ -276,7 +303,8 @@ def plot_map(run, out_path, field, quantity, cmap, decades, vmax=None, mask_no_d
         dust_free = snaps["sigma_d"][keep] < NO_DUST_FRACTION * initial_dust(run)[None, :]
         values = np.where(dust_free, np.nan, values)
 
-    fig, (ax,) = new_figure(height=4.9)
+    own = ax is None
+    fig, (ax,) = new_figure(height=4.9, ax=ax)
     ax.set_yscale("log")
     ax.grid(False)
     limits = log_limits(values, decades, vmax)
@@ -314,8 +342,8 @@ def plot_map(run, out_path, field, quantity, cmap, decades, vmax=None, mask_no_d
         ax.legend(handles=handles, loc="lower left", bbox_to_anchor=(0.0, 1.01, 1.0, 0.1),
                   mode="expand", ncol=2, fontsize=7.5, frameon=False, borderaxespad=0.0,
                   handlelength=2.2)
-    fig.suptitle(title(run, f"{quantity}(r, t)"), fontsize=11)
-    save(fig, run, out_path)
+    suptitle(fig, own, title(run, f"{quantity}(r, t)"))
+    done(fig, run, out_path, own)
     return fig
 
 
@@ -401,8 +429,8 @@ def overlay_planetesimals(ax, run, keep, t, hatch_color=ZONE_HATCH_COLOR):
         if early.any():
             label += (f" ({plural(early.sum(), 'cell')} before {plot.format_years(bottom)},"
                       " off the axis)")
-        line, = ax.plot(run.r_c, t_first, label=label, **T_FIRST_STYLE)
-        handles.append(line)
+        ax.plot(run.r_c, t_first, **T_FIRST_STYLE)
+        handles.append(Line2D([], [], label=label, **T_FIRST_STYLE))
     return handles
 
 
@@ -431,9 +459,10 @@ def monitor_label(name, r_au, snow_line=True):
     return name if name == plain else f"{pretty} ({plain})"
 
 
-def plot_pebble_flux(run, out_path):
+def plot_pebble_flux(run, out_path=None, ax=None):
     """Inward pebble flux [M_earth Myr^-1] and cumulative mass through [M_earth] at
-    every monitored radius vs t [yr]; log-log, legend with names and radii."""
+    every monitored radius vs t [yr]; log-log, legend with names and radii. ax: one axes
+    (the flux only) or two (flux, mass); returns the Figure."""
     time, flux, mass, source = pebble_series(run)
     r_au = run.monitor_r_au
     if not np.any(time > 0):
@@ -442,7 +471,9 @@ def plot_pebble_flux(run, out_path):
         raise Skip("no pebble monitors on the grid")
     names = run.pebble_names or [f"{r:.3g} au" for r in r_au]
     order = np.argsort(r_au)
-    fig, (ax_f, ax_m) = new_figure(2, height=6.6)
+    own = ax is None
+    fig, axes = new_figure(2, height=6.6, ax=ax)
+    ax_f, ax_m = (axes + [None])[:2]
     positive = time > 0
     outward = False
     for n, k in enumerate(order):
@@ -456,17 +487,21 @@ def plot_pebble_flux(run, out_path):
                   label=f"{monitor_label(names[k], r_au[k], snow_line)}: {final:.3g} "
                         + r"$M_\oplus$",
                   **style)
-        ax_m.plot(time[positive], plot.masked_log(mass[positive, k]), **style)
+        if ax_m is not None:
+            ax_m.plot(time[positive], plot.masked_log(mass[positive, k]), **style)
         outward |= bool(np.any(flux[positive, k] < 0))
     for ax, values in ((ax_f, flux), (ax_m, mass)):
-        ax.set_yscale("log")
-        set_decades_ylim(ax, values[positive], LINE_DECADES)
+        if ax is not None:
+            ax.set_yscale("log")
+            set_decades_ylim(ax, values[positive], LINE_DECADES)
     ax_f.set_ylabel(r"inward pebble flux [$M_\oplus$ Myr$^{-1}$]")
-    ax_m.set_ylabel(r"cumulative mass through [$M_\oplus$]")
-    ax_m.set_xlabel(r"$t$ [yr]")
+    bottom = ax_f if ax_m is None else ax_m
+    if ax_m is not None:
+        ax_m.set_ylabel(r"cumulative mass through [$M_\oplus$]")
+    bottom.set_xlabel(r"$t$ [yr]")
     if np.any(positive):
-        ax_m.set_xlim(time[positive].min(), time[positive].max())
-        label_minor_log_ticks(ax_m.xaxis, time[positive].min(), time[positive].max())
+        bottom.set_xlim(time[positive].min(), time[positive].max())
+        label_minor_log_ticks(bottom.xaxis, time[positive].min(), time[positive].max())
     columns = 3 if np.isfinite(run.r_snow_au) else 2     # room for the T_sub label
     ax_f.legend(loc="lower left", bbox_to_anchor=(0.0, 1.01, 1.0, 0.1), mode="expand",
                 ncol=min(columns, len(order)), fontsize=7.5, frameon=False, borderaxespad=0.0,
@@ -475,12 +510,17 @@ def plot_pebble_flux(run, out_path):
     if outward:
         ax_f.text(0.99, 0.02, "gaps: net outward flow (not shown)", transform=ax_f.transAxes,
                   ha="right", va="bottom", fontsize=7, color="0.4")
-    fig.suptitle(title(run, "pebble flux through the monitored radii"), fontsize=11)
-    if source != "/timeseries":
+    suptitle(fig, own, title(run, "pebble flux through the monitored radii"))
+    source_note(fig, own, source)
+    done(fig, run, out_path, own)
+    return fig
+
+
+def source_note(fig, own, source):
+    """'from the snapshots (no /timeseries)' in the bottom left of a figure made here."""
+    if own and source != "/timeseries":
         fig.text(0.005, 0.002, f"from the {source} (no /timeseries)", fontsize=6, color="0.5",
                  va="bottom")
-    save(fig, run, out_path)
-    return fig
 
 
 def set_decades_ylim(ax, values, decades):
@@ -501,15 +541,17 @@ def set_decades_ylim(ax, values, decades):
 
 # --- planetesimal surface density ------------------------------------------------------
 
-def plot_sigma_pl(run, out_path):
+def plot_sigma_pl(run, out_path=None, ax=None):
     """Sigma_pl(r) [g cm^-2] by channel and in total at the last snapshot, with Sigma_g
-    and the initial Sigma_d for scale and the formation threshold (formed_threshold)."""
+    and the initial Sigma_d for scale and the formation threshold (formed_threshold).
+    Into `ax` if given; returns the Figure."""
     snaps = run.snapshots
     total = sigma_pl_total(run)
     if total is None:
         raise Skip("no planetesimal fields (planetesimal formation off)")
     last = -1
-    fig, (ax,) = new_figure(height=4.6)
+    own = ax is None
+    fig, (ax,) = new_figure(height=4.6, ax=ax)
     ax.set_yscale("log")
     ax.grid(True, which="minor", axis="x", color="0.95", lw=0.4)
     sigma_d0 = initial_dust(run)
@@ -561,9 +603,8 @@ def plot_sigma_pl(run, out_path):
     ax.set_ylabel(r"$\Sigma$ [g cm$^{-2}$]")
     ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.01, 1.0, 0.1), mode="expand", ncol=2,
               fontsize=7.5, frameon=False, borderaxespad=0.0)
-    fig.suptitle(title(run, f"planetesimals at {plot.format_years(run.time[last])}"),
-                 fontsize=11)
-    save(fig, run, out_path)
+    suptitle(fig, own, title(run, f"planetesimals at {plot.format_years(run.time[last])}"))
+    done(fig, run, out_path, own)
     return fig
 
 
@@ -614,15 +655,19 @@ def budget_series(run):
             "snapshots")
 
 
-def plot_mass_budget(run, out_path):
+def plot_mass_budget(run, out_path=None, ax=None):
     """Dust on the grid, planetesimals (each channel), mass through r_in and sublimated
-    [M_earth] vs t [yr]; below, |sum - initial| / initial."""
+    [M_earth] vs t [yr]; below, |sum - initial| / initial. ax: one axes (the masses
+    only) or two (masses, error); returns the Figure."""
     time, columns, error, initial, names, source = budget_series(run)
     positive = time > 0
     if not positive.any():
         raise Skip("no mass-budget sample at t > 0")
-    fig, (ax, ax_e) = new_figure(2, height=6.4)
-    fig.get_layout_engine().set(h_pad=0.04)
+    own = ax is None
+    fig, axes = new_figure(2, height=6.4, ax=ax)
+    ax, ax_e = (axes + [None])[:2]
+    if own:
+        fig.get_layout_engine().set(h_pad=0.04)
     ax.set_yscale("log")
     ax.axhline(initial, color="k", ls="--", lw=1.0,
                label=f"initial dust: {initial:.4g} " + r"$M_\oplus$")
@@ -650,6 +695,12 @@ def plot_mass_budget(run, out_path):
         ax.text(0.01, 0.02, "zero throughout: " + ", ".join(absent), transform=ax.transAxes,
                 fontsize=7, color="0.4", va="bottom")
 
+    if ax_e is None:
+        ax.set_xlabel(r"$t$ [yr]")
+        ax.set_xlim(time[positive].min(), time[positive].max())
+        suptitle(fig, own, title(run, "dust mass budget"))
+        done(fig, run, out_path, own)
+        return fig
     relative = plot.masked_log(error[positive] / initial) if initial > 0 else np.full(
         positive.sum(), np.nan)
     ax_e.set_yscale("log")
@@ -674,11 +725,9 @@ def plot_mass_budget(run, out_path):
     if np.any(positive):
         ax_e.set_xlim(time[positive].min(), time[positive].max())
         label_minor_log_ticks(ax_e.xaxis, time[positive].min(), time[positive].max())
-    fig.suptitle(title(run, "dust mass budget"), fontsize=11)
-    if source != "/timeseries":
-        fig.text(0.005, 0.002, f"from the {source} (no /timeseries)", fontsize=6, color="0.5",
-                 va="bottom")
-    save(fig, run, out_path)
+    suptitle(fig, own, title(run, "dust mass budget"))
+    source_note(fig, own, source)
+    done(fig, run, out_path, own)
     return fig
 
 
@@ -699,12 +748,18 @@ def figures(run):
 
 def main(argv=None):
     """Command-line entry point; returns the exit status."""
-    parser = argparse.ArgumentParser(prog="python3 -m postprocess.plot_run", description=__doc__,
+    parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("run", help="run file (HDF5) written by panoptic")
     parser.add_argument("-o", "--outdir", help="output directory (default: RUN_plots/)")
+    style.add_cli_options(parser)
     args = parser.parse_args(argv)
+    with style.from_cli(args):
+        return _main(args)
 
+
+def _main(args):
+    """main() inside the style options of the command line."""
     run = load_run(args.run)
     if run.n_snapshots == 0:
         print(f"{args.run}: no snapshots to plot", file=sys.stderr)
@@ -713,6 +768,7 @@ def main(argv=None):
     os.makedirs(outdir, exist_ok=True)
     status = 0
     for name, make in figures(run):
+        name = style.file_name(name)
         path = os.path.join(outdir, name)
         try:
             make(path)

@@ -1,6 +1,8 @@
 """Outcomes of a parameter scan against its axes, from the scan's summary table.
 
-    python3 -m postprocess.plot_scan DIR [-o OUTDIR] [--axes KEY[,KEY]] [--outcomes A,B,...]
+    panoptic-plot-scan DIR [-o OUTDIR] [--axes KEY[,KEY]] [--outcomes A,B,...] [--log KEY]
+                       [--format png|pdf|svg] [--title T] [--size column|page|INCHES]
+    (in the repository: python3 -m postprocess.plot_scan DIR ...)
 
 reads DIR/summary.h5 (written by `panoptic scan ... -o DIR`) and writes into OUTDIR
 (default DIR/plots/), printing the path of each figure:
@@ -11,7 +13,8 @@ reads DIR/summary.h5 (written by `panoptic scan ... -o DIR`) and writes into OUT
     form a full grid (sampling = "grid"), else a scatter coloured by the outcome
     (Latin-hypercube scans).
 Axes of log spacing (and lists of positive numbers that span two decades or more) get
-log scales; positive outcomes that span more than two decades get
+log scales, and so does every axis named by --log (e.g. 850, 1700, 3400); a map of two
+axes of a scan of more says which axes it leaves out; positive outcomes that span more than two decades get
 a logarithmic colour scale (values more than 1e6 below the largest get its lowest colour).
 Runs that did not complete are drawn as black crosses (along the bottom of a line panel:
 they have no value), completed runs without a value of the outcome (NaN, e.g.
@@ -23,12 +26,12 @@ import argparse
 import os
 import sys
 
-import h5py
 import matplotlib.ticker
 import numpy as np
 from matplotlib import colors, patheffects
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
+
+from . import style
+from .scan import load_summary  # noqa: F401 (plot_scan.load_summary, as before)
 
 DEFAULT_OUTCOMES = ("m_pl_coag", "m_pl_si", "m_peb_snowline", "m_peb_r_in", "m_dust_final",
                     "t_first_pl_min")
@@ -85,37 +88,6 @@ def key_label(key):
         if key.endswith(suffix):
             return f"{key} [{unit}]"
     return key
-
-
-def _str(v):
-    """An HDF5 string (bytes or str) as str."""
-    return v.decode() if isinstance(v, bytes) else str(v)
-
-
-def load_summary(scan_dir):
-    """The summary table: dict with 'status', 'name', 'axes' {key: (values, spacing)},
-    'outcome' {name: values}, 'units' {name: units attribute}, 'sampling', 'scene' (the
-    base scene's name)."""
-    path = os.path.join(scan_dir, "summary.h5")
-    if not os.path.isfile(path):
-        raise FileNotFoundError(f"{path} not found: give the directory of `panoptic scan "
-                                f"... -o DIR` (the summary is written when its runs end)")
-    with h5py.File(path, "r") as f:
-        dec = lambda a: np.array([x.decode() for x in a])  # noqa: E731
-        axes = {}
-        for k in _str(f.attrs["axes"]).split(","):
-            ds = f["axes"][k]
-            sp = _str(ds.attrs.get("spacing", "list"))
-            v = ds[()] if ds.dtype.kind == "f" else dec(ds[()])
-            if sp == "list" and v.dtype.kind == "f" and np.all(v > 0) and (
-                    v.max() >= 100 * v.min() * (1 - 1e-9)):
-                sp = "log"  # a list of positive numbers over two decades or more
-            axes[k] = (v, sp)
-        return {"status": dec(f["runs/status"][()]), "name": dec(f["runs/name"][()]),
-                "axes": axes, "sampling": _str(f.attrs["sampling"]),
-                "scene": os.path.splitext(os.path.basename(_str(f.attrs.get("scene", ""))))[0],
-                "outcome": {k: ds[()] for k, ds in f["outcome"].items()},
-                "units": {k: _str(ds.attrs.get("units", "")) for k, ds in f["outcome"].items()}}
 
 
 def grid_map(x, y, z):
@@ -200,10 +172,11 @@ def mark_missing(ax, x, y, bad, nan, label_runs):
                     label=label if label_runs else None, **style)
 
 
-def line_figure(s, key, outcomes, path):
-    """One panel per outcome against axis `key`; returns the figure (also saved to path).
-    Points are joined only where the other axes are fixed (one line per value of a second
-    axis of at most 8 values); else (more axes, Latin hypercube) they are drawn alone."""
+def line_figure(s, key, outcomes, path=None, ax=None):
+    """One panel per outcome against axis `key`; returns the figure (also saved to path,
+    if given). Points are joined only where the other axes are fixed (one line per value
+    of a second axis of at most 8 values); else (more axes, Latin hypercube) they are
+    drawn alone. ax: the axes to draw into, one per outcome (default: a new figure)."""
     x, spacing = s["axes"][key]
     others = [k for k in s["axes"] if k != key and s["axes"][k][0].dtype.kind == "f"]
     groups = [(None, np.ones(len(x), bool))]
@@ -217,10 +190,12 @@ def line_figure(s, key, outcomes, path):
     n = len(outcomes)
     cols = min(n, 3)
     rows = (n + cols - 1) // cols
-    fig = Figure(figsize=(4.2 * cols, 3.3 * rows), layout="constrained")
-    FigureCanvasAgg(fig)
+    given = None if ax is None else (list(ax) if np.iterable(ax) else [ax])
+    if given is not None and len(given) != n:
+        raise ValueError(f"line_figure: {len(given)} axes for {n} outcomes")
+    fig = style.new_figure(4.2 * cols, 3.3 * rows) if given is None else given[0].figure
     for k, o in enumerate(outcomes):
-        ax = fig.add_subplot(rows, cols, k + 1)
+        ax = fig.add_subplot(rows, cols, k + 1) if given is None else given[k]
         z = s["outcome"][o]
         for (lab, sel), line in zip(groups, joined):
             m = sel & ok & np.isfinite(z)
@@ -246,19 +221,23 @@ def line_figure(s, key, outcomes, path):
         other = ", ".join(k for k in s["axes"] if k != key)
         fig.suptitle(f"points not joined: the other axes ({other}) vary between them",
                      fontsize=9)
-    fig.savefig(path, dpi=150)
+    elif given is None and style.options()["title"]:
+        fig.suptitle(style.options()["title"])
+    if path is not None:
+        style.savefig(fig, path, dpi=150)
     return fig
 
 
-def map_figure(s, kx, ky, o, path):
+def map_figure(s, kx, ky, o, path=None, ax=None):
     """Colour map (full grid) or scatter of outcome o over axes kx, ky; returns the figure
-    (also saved to path)."""
+    (also saved to path, if given). The axes of the scan the map leaves out are named
+    under it (their runs overlap on the map). Into `ax` if given."""
     x, sx = s["axes"][kx]
     y, sy = s["axes"][ky]
     z = np.where(s["status"] == "completed", s["outcome"][o], np.nan)
-    fig = Figure(figsize=(5.6, 4.4), layout="constrained")
-    FigureCanvasAgg(fig)
-    ax = fig.add_subplot()
+    own = ax is None
+    fig = style.new_figure(5.6, 4.4) if own else ax.figure
+    ax = fig.add_subplot() if own else ax
     norm = norm_for(z)
     g = grid_map(x, y, z) if s["sampling"] == "grid" else None
     if g is not None:
@@ -290,22 +269,54 @@ def map_figure(s, kx, ky, o, path):
         sampled_ticks(ax, "y", g[1], sy == "log")
     ax.set_xlabel(key_label(kx))
     ax.set_ylabel(key_label(ky))
-    ax.set_title(f"{OUTCOME_LABELS.get(o, o)} ({s.get('scene') or 'scan'}, "
-                 f"{len(z)} runs)", fontsize=10)
+    ax.set_title(style.title(f"{OUTCOME_LABELS.get(o, o)} ({s.get('scene') or 'scan'}, "
+                             f"{len(z)} runs)"), fontsize=10)
     fig.colorbar(im, ax=ax, label=label(o, s))
-    fig.savefig(path, dpi=150)
+    left_out = left_out_note(s, (kx, ky))
+    if left_out:
+        ax.text(0.0, -0.16, left_out, transform=ax.transAxes, fontsize=7, color="0.3",
+                va="top", ha="left", wrap=True)
+    if path is not None:
+        style.savefig(fig, path, dpi=150)
     return fig
+
+
+def left_out_note(s, shown):
+    """'not shown: disk.T_1au (150-300); runs differing only in it overlap' for the axes
+    of scan s outside `shown`; "" when the map shows every axis."""
+    parts = []
+    for k, (v, _) in s["axes"].items():
+        if k in shown:
+            continue
+        if v.dtype.kind == "f":
+            parts.append(f"{k} ({np.min(v):.3g}$-${np.max(v):.3g})")
+        else:
+            parts.append(f"{k} ({len(np.unique(v))} values)")
+    if not parts:
+        return ""
+    return ("not shown: " + ", ".join(parts) + " (each point is one run; runs that differ "
+            "only there overlap)")
 
 
 def main(argv=None):
     """Command line: the figures of DIR/summary.h5 into OUTDIR; returns the exit status."""
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scan_dir")
     ap.add_argument("-o", "--outdir")
     ap.add_argument("--axes", help="one or two axis keys, comma-separated (default: the "
                                    "first two numeric axes)")
     ap.add_argument("--outcomes", help="comma-separated /summary names")
+    ap.add_argument("--log", action="append", default=[], metavar="KEY",
+                    help="draw axis KEY on a log scale (repeat, or comma-separate)")
+    style.add_cli_options(ap)
     a = ap.parse_args(argv)
+    with style.from_cli(a):
+        return _main(a)
+
+
+def _main(a):
+    """main() inside the style options of the command line."""
     try:
         s = load_summary(a.scan_dir)
     except FileNotFoundError as err:
@@ -313,6 +324,14 @@ def main(argv=None):
     outdir = a.outdir or os.path.join(a.scan_dir, "plots")
     os.makedirs(outdir, exist_ok=True)
     numeric = [k for k, (v, _) in s["axes"].items() if v.dtype.kind == "f"]
+    for k in (k for arg in a.log for k in arg.split(",") if k):
+        if k not in numeric:
+            sys.exit(f"plot_scan: --log {k}: not a numeric axis of this scan; axes: "
+                     f"{', '.join(numeric)}")
+        values = s["axes"][k][0]
+        if not np.all(values > 0):
+            sys.exit(f"plot_scan: --log {k}: the axis has values <= 0")
+        s["axes"][k] = (values, "log")
     keys = a.axes.split(",") if a.axes else numeric[:2]
     for k in keys:
         if k not in numeric:
@@ -329,12 +348,12 @@ def main(argv=None):
         sys.exit("plot_scan: no completed run has a /summary yet")
     paths = []
     if len(keys) == 1:
-        p = os.path.join(outdir, f"lines_{keys[0]}.png")
+        p = os.path.join(outdir, style.file_name(f"lines_{keys[0]}.png"))
         line_figure(s, keys[0], outcomes, p)
         paths.append(p)
     else:
         for o in outcomes:
-            p = os.path.join(outdir, f"map_{o}.png")
+            p = os.path.join(outdir, style.file_name(f"map_{o}.png"))
             map_figure(s, keys[0], keys[1], o, p)
             paths.append(p)
     for p in paths:

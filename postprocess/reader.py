@@ -21,21 +21,27 @@ Every dataset carries `units` and `description` attributes. /timeseries, /pebble
 /summary are absent from older and transport-only files; /summary is written when the
 run completes, /solver also when it stops or fails (its status says which).
 
-Arrays come back in the units of the file (each dataset's `units` attribute; run.unit()
-gives it): /snapshots in cgs with times in yr and radii in au, /timeseries and /summary
-in M_earth, Myr and au. The same short name can live in two groups in different units
-(snapshots/m_pl_coag [g], summary/m_pl_coag [M_earth]): field() then takes /snapshots
-and warns; give the path to choose.
+The accessors return (t, value) (time first) in the unit their docstring states:
+masses in M_earth, mass flows in M_earth Myr^-1, times in yr, radii in au (a /snapshots
+mass in g is converted). The raw arrays (run.snapshots, run.field) stay in the units of
+the file (each dataset's `units` attribute; run.unit() gives it): /snapshots in cgs with
+times in yr and radii in au, /timeseries and /summary in M_earth, Myr and au. The same
+short name can live in two groups in different units (snapshots/m_pl_coag [g],
+summary/m_pl_coag [M_earth]): field() then takes /snapshots and warns; give the path, or
+use series(), which states its unit.
 
 Usage:
     run = load_run("out/run.h5")
-    run.field("sigma_d")                    # (nt, N) [g cm^-2]
-    run.unit("sigma_d")                     # "g cm^-2"
-    profile, t = run.at_time("sigma_d", 1e5)   # nearest snapshot, [g cm^-2] and [yr]
+    t, profile = run.at_time("sigma_d", 1e5)  # nearest snapshot: [yr], (N,) [g cm^-2]
     t, m_pl = run.planetesimal_mass()       # (ns,) [yr], [M_earth] (all channels)
-    t, flux = run.pebble_flux("snow line")  # (ns,) [yr], [M_earth Myr^-1]
+    t, m = run.series("m_pl_coag")          # (ns,) [yr], [M_earth] (g converted)
+    t, flux = run.pebble_flux("snow line")  # (ns,) [yr], [M_earth Myr^-1]; or a monitor
+                                            # radius [au]; any other radius raises
+    t, flux = run.mass_flow(5.0)            # (nt,) [yr], [M_earth Myr^-1] at 5 au
     t, m = run.budget("m_out_inner")        # (ns,) [yr], [M_earth]
-    run.dust_mass()                         # (nt,) [g]
+    run.field("sigma_d"), run.unit("sigma_d")   # (nt, N) raw array, "g cm^-2"
+    run.dust_mass()                         # (nt,) [g] (the snapshots' sum)
+    run.to_xarray()                         # xarray.Dataset, dims t and r (if installed)
 """
 import os
 import tomllib
@@ -50,6 +56,9 @@ M_SUN = 1.989e33        # [g]
 AU = 1.496e13           # [cm]
 YR = 3.156e7            # [s]
 MYR = 1e6 * YR          # [s]
+
+# Conversions of a /snapshots unit to the unit of the accessors (series, mass_flow)
+TO_ACCESSOR_UNIT = {"g": (M_EARTH, "M_earth"), "g s^-1": (M_EARTH / MYR, "M_earth Myr^-1")}
 
 # The mass-budget terms of a file written before the attributes that name them
 # (/snapshots budget_terms, /timeseries mass_budget_columns), in their column order
@@ -117,6 +126,12 @@ class Run:
         if self.config.get("snowline", {}).get("enabled") is False:
             self.r_snow_au = np.nan     # no snow line in the run, only where T = T_sub
 
+    def __repr__(self):
+        state = "finished" if self.finished else "unfinished"
+        span = f"{self.time[0]:g}-{self.time[-1]:g} yr" if len(self.time) else "no snapshots"
+        return (f"<panoptic Run {self.path!r}: {self.scene or 'run'}, {len(self.r_c)} cells, "
+                f"{self.n_snapshots} snapshots ({span}), {state}>")
+
     @property
     def scene(self):
         """Scene name (root attribute `scene`), "" if absent."""
@@ -164,7 +179,8 @@ class Run:
                     warnings.warn(f"{name!r} is in {', '.join('/' + g for g in found)} in "
                                   f"different units; returning /{found[0]}/{key} "
                                   f"[{self.units.get(f'{found[0]}/{key}', '')}]: give "
-                                  f"the path to choose", stacklevel=2)
+                                  f"the path to choose (run.series({key!r}) states its "
+                                  f"unit)", stacklevel=2)
                 return groups[found[0]][key]
         raise KeyError(f"{name!r} not in {self.path}{_process_hint(key)}; datasets: "
                        f"{sorted(self.units)}")
@@ -193,14 +209,58 @@ class Run:
         return self.time, np.asarray(m, dtype=float) / M_EARTH
 
     def pebble_flux(self, monitor):
-        """(time [yr], inward pebble flux [M_earth Myr^-1]) through one monitor, given by
-        its name ("snow line", "r_in", "3 au": run.pebble_names) or radius [au] (the
-        nearest monitor), on the /timeseries samples."""
+        """(time [yr], inward pebble flux [M_earth Myr^-1]) through one monitor on the
+        /timeseries samples. `monitor`: its name ("snow line", "r_in", "3 au":
+        run.pebble_names) or its radius [au] (run.monitor_r_au, the face it sits on, or
+        the radius its name gives: 3.0 for "3 au"). Any other radius raises KeyError
+        naming the monitors; run.mass_flow(r) gives the flow at any radius from the
+        snapshots."""
         i = self._monitor(monitor)
         if "pebble_flux" not in self.timeseries:
             raise KeyError(f"{self.path} has no /timeseries/pebble_flux (an older file?): "
                            f"use snapshots['pebble_flux'] [g s^-1]")
         return self.timeseries["time"], self.timeseries["pebble_flux"][:, i]
+
+    def mass_flow(self, r_au):
+        """(snapshot times [yr], inward dust mass flow [M_earth Myr^-1]) at radius r_au
+        [au], interpolated linearly in log r between the two cell faces around it from
+        /snapshots/mdot_d (positive outward in the file; the sign is flipped here). On
+        the snapshots, coarser than pebble_flux's /timeseries at a monitor."""
+        if "mdot_d" not in self.snapshots:
+            raise KeyError(f"{self.path} has no /snapshots/mdot_d (an older file?)")
+        r = float(r_au)
+        if not self.r_f[0] <= r <= self.r_f[-1]:
+            raise ValueError(f"r = {r:g} au is outside the grid ({self.r_f[0]:g}-"
+                             f"{self.r_f[-1]:g} au)")
+        log_rf = np.log(self.r_f)
+        j = int(np.clip(np.searchsorted(log_rf, np.log(r)) - 1, 0, len(log_rf) - 2))
+        w = (np.log(r) - log_rf[j]) / (log_rf[j + 1] - log_rf[j])
+        mdot = self.snapshots["mdot_d"]
+        inward = -((1.0 - w) * mdot[:, j] + w * mdot[:, j + 1])
+        return self.time, inward / (M_EARTH / MYR)
+
+    def series(self, name):
+        """(time [yr], value) of a scalar-per-time quantity, in the accessors' units:
+        a mass-budget column ("m_dust", "m_pl_coag", "m_pl_si", "m_out_inner",
+        "m_sublimated", "error") [M_earth] on the /timeseries samples when the file has
+        them; else the /snapshots dataset of that name on the snapshots, a mass [g]
+        converted to M_earth and a flow [g s^-1] to M_earth Myr^-1 (other units as in
+        the file: run.series_unit(name))."""
+        if name in self._budget_names():
+            return self.budget(name)
+        if name not in self.snapshots or name == "time":
+            raise KeyError(f"{name!r} is not a budget column or /snapshots dataset of "
+                           f"{self.path}{_process_hint(name)}; budget columns: "
+                           f"{self._budget_names()}, snapshots: {sorted(self.snapshots)}")
+        factor, _ = TO_ACCESSOR_UNIT.get(self.units.get(f"snapshots/{name}", ""), (1.0, ""))
+        return self.time, self.snapshots[name] / factor
+
+    def series_unit(self, name):
+        """The unit of run.series(name)'s values."""
+        if name in self._budget_names():
+            return "M_earth"
+        unit = self.unit(f"snapshots/{name}")
+        return TO_ACCESSOR_UNIT.get(unit, (1.0, unit))[1]
 
     def budget(self, term):
         """(time [yr], mass [M_earth]) of one mass-budget column on the /timeseries
@@ -224,25 +284,41 @@ class Run:
         return default if self.timeseries["mass_budget"].shape[1] == 6 else []
 
     def _monitor(self, monitor):
-        """Index of a pebble-flux monitor by name or radius [au]."""
+        """Index of a pebble-flux monitor by name or radius [au] (its face's radius or the
+        radius its name says, to 1e-6); KeyError naming the monitors otherwise."""
         if isinstance(monitor, str):
             if monitor not in self.pebble_names:
                 raise KeyError(f"no pebble-flux monitor {monitor!r} in {self.path}; "
-                               f"monitors: {self.pebble_names}")
+                               f"monitors: {self._monitor_list()}")
             return self.pebble_names.index(monitor)
-        r = np.asarray(self.monitor_r_au)
+        r = np.asarray(self.monitor_r_au, dtype=float)
         if r.size == 0:
             raise KeyError(f"{self.path} has no pebble-flux monitors")
-        return int(np.argmin(np.abs(np.log(r / float(monitor)))))
+        want = float(monitor)
+        for i, (name, r_face) in enumerate(zip(self.pebble_names, r)):
+            nominal = _radius_in_name(name)
+            if any(x is not None and abs(x - want) <= 1e-6 * abs(want)
+                   for x in (float(r_face), nominal)):
+                return i
+        raise KeyError(f"r = {want:g} au is not a pebble-flux monitor of {self.path}; "
+                       f"monitors: {self._monitor_list()}. run.mass_flow({want:g}) gives "
+                       f"the flow there on the snapshots, or add the radius to "
+                       f"pebbles.radii_au and run again")
+
+    def _monitor_list(self):
+        """'snow line (2.73 au), 3 au (2.98 au), ...' of the monitors."""
+        return ", ".join(f"{n} ({r:.4g} au)" for n, r in zip(self.pebble_names,
+                                                            self.monitor_r_au))
 
     def dust_mass(self):
         """Total dust mass on the grid per snapshot, sum(sigma_d * area) [g], (nt,)."""
         return self.snapshots["sigma_d"] @ self.area
 
     def at_time(self, name, t_yr):
-        """(profile, time [yr]) of snapshot field `name` at the snapshot nearest t_yr
-        (warned when t_yr lies outside the snapshots' span, or the nearest snapshot is
-        more than 10 % away from it: compare the time returned)."""
+        """(time [yr], profile) of snapshot field `name` (in its /snapshots unit,
+        run.unit(name)) at the snapshot nearest t_yr (warned when t_yr lies outside the
+        snapshots' span, or the nearest snapshot is more than 10 % away from it: compare
+        the time returned)."""
         if name not in self.snapshots:
             self.field(f"snapshots/{name}")  # raises with the reason
         i = int(np.argmin(np.abs(self.time - t_yr)))
@@ -251,7 +327,16 @@ class Run:
             warnings.warn(f"{self.path}: no snapshot near t = {t_yr:g} yr; the nearest is at "
                           f"{t:g} yr (snapshots span {self.time[0]:g}-{self.time[-1]:g} yr)",
                           stacklevel=2)
-        return self.snapshots[name][i], t
+        return t, self.snapshots[name][i]
+
+    def to_xarray(self):
+        """The snapshots as an xarray.Dataset: dims t [yr] and r [au] (cell centres) or
+        r_f [au] (faces) or monitor, each variable with its `units` and `description`
+        attributes; the /disk fields on r; /timeseries on t_series [yr]; the /summary
+        scalars and root attributes as dataset attributes. ImportError if xarray is not
+        installed (Debian: python3-xarray)."""
+        from .xarray_view import run_to_xarray
+        return run_to_xarray(self)
 
 
 def load_run(path):
@@ -301,10 +386,11 @@ def _refuse_other_files(f, path):
     if "snapshots" not in f:
         if "runs" in f and "outcome" in f:
             raise ValueError(f"{path} is a scan summary; read it with "
-                             f"postprocess.plot_scan.load_summary")
+                             f"panoptic.load_scan(DIR) (postprocess.load_scan in the "
+                             f"repository)")
         if "image" in f or "spectral_index" in f or "flux" in f:
-            raise ValueError(f"{path} is an observe output; plot it with "
-                             f"postprocess.plot_observe")
+            raise ValueError(f"{path} is an observe output; read it with "
+                             f"panoptic.load_observation, plot it with panoptic-plot-observe")
         raise ValueError(f"{path} is not a panoptic run file (no /snapshots)")
 
 
@@ -320,6 +406,15 @@ _PROCESS_OF = {
 def _process_hint(key):
     """" (written only with <process> on)" for a dataset a process owns, else ""."""
     return f" (written only with {_PROCESS_OF[key]} on)" if key in _PROCESS_OF else ""
+
+
+def _radius_in_name(name):
+    """3.0 for a monitor named "3 au", None for "snow line" or "r_in"."""
+    number, _, unit = name.strip().partition(" ")
+    try:
+        return float(number) if unit == "au" else None
+    except ValueError:
+        return None
 
 
 def _name_list(f, group, attr):
@@ -357,15 +452,22 @@ def _open_swmr_read(path):
 
 
 def open_output(path):
-    """A run's output, read-only: h5py.File(path, 'r'); for a run's output whose writer still runs or was killed
-    (panoptic writes its output in HDF5's SWMR mode, and HDF5 refuses a plain open of
-    such a file), the file opened for SWMR reading: every row flushed before, consistent."""
+    """A run's output, read-only: h5py.File(path, 'r'); for a run's output whose writer
+    still runs or was killed (panoptic writes its output in HDF5's SWMR mode, and HDF5
+    refuses a plain open of such a file, "file is already open for write"), the file
+    opened for SWMR reading: every row flushed before, consistent. Where that fails too,
+    OSError saying how to recover the file (`h5clear -s`)."""
     if os.path.isdir(path):
         raise IsADirectoryError(f"{path} is a directory; give a run's .h5 file (a scan's "
                                 f"runs are in {os.path.join(str(path), 'runs')})")
     try:
         return h5py.File(path, "r")
     except OSError as err:
+        if "unable to lock file" in str(err):
+            raise OSError(f"{path} is open for writing (a panoptic run still going?): HDF5's "
+                          f"file lock refuses a reader; set HDF5_USE_FILE_LOCKING=FALSE in "
+                          f"the environment before h5py is imported to read it while it "
+                          f"runs") from err
         if "consistency flags" not in str(err):
             raise
         try:

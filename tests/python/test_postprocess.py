@@ -1,6 +1,6 @@
 """Self-test of the postprocessing package.
 
-    /usr/bin/python3 -m postprocess.test_postprocess
+    PYTHONPATH=. /usr/bin/python3 tests/python/test_postprocess.py   (from the repository root)
 
 Builds synthetic run files (the layout of postprocess/reader.py, with and without the
 /timeseries, /pebbles and /summary groups, growth and planetesimal fields) in a temporary
@@ -19,7 +19,10 @@ import warnings
 import h5py
 import numpy as np
 
-from postprocess import analytic, plot, plot_run, plot_scan, reader
+# the repository root, for `postprocess` when run without PYTHONPATH
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+from postprocess import analytic, plot, plot_run, plot_scan, reader  # noqa: E402
 
 AU = 1.496e13    # [cm]
 YR = 3.156e7     # [s]
@@ -226,7 +229,7 @@ def check_reader_complete(tmp):
                           "nncf": 1, "wall_s": 12.5, "status": "completed"}, run.solver
     assert all(type(run.solver[k]) is int for k in ("nst", "nfe", "nje", "netf", "nni", "nncf"))
     assert np.allclose(run.dust_mass(), ref["m_dust"], rtol=1e-13)
-    profile, t = run.at_time("sigma_d", 1.2e4)
+    t, profile = run.at_time("sigma_d", 1.2e4)
     i = int(np.argmin(np.abs(ref["time"] - 1.2e4)))
     assert t == ref["time"][i] and np.array_equal(profile, ref["sigma_d"][i])
     try:
