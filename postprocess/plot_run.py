@@ -31,7 +31,7 @@ import sys
 import traceback
 
 import numpy as np
-from matplotlib import colormaps, colors, patheffects, ticker
+from matplotlib import colormaps, colors, patheffects
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
@@ -481,14 +481,14 @@ def plot_pebble_flux(run, out_path=None, ax=None):
         # inner monitors drawn wider, so that coinciding curves stay visible
         width = 1.2 + 1.0 * (len(order) - 1 - n) / max(len(order) - 1, 1)
         snow_line = bool(np.isfinite(run.r_snow_au))
-        style = {"color": MONITOR_COLORS[n % len(MONITOR_COLORS)], "lw": width,
+        line_style = {"color": MONITOR_COLORS[n % len(MONITOR_COLORS)], "lw": width,
                  "ls": "--" if names[k] == "snow line" and snow_line else "-"}
         ax_f.plot(time[positive], plot.masked_log(flux[positive, k]),
                   label=f"{monitor_label(names[k], r_au[k], snow_line)}: {final:.3g} "
                         + r"$M_\oplus$",
-                  **style)
+                  **line_style)
         if ax_m is not None:
-            ax_m.plot(time[positive], plot.masked_log(mass[positive, k]), **style)
+            ax_m.plot(time[positive], plot.masked_log(mass[positive, k]), **line_style)
         outward |= bool(np.any(flux[positive, k] < 0))
     for ax, values in ((ax_f, flux), (ax_m, mass)):
         if ax is not None:

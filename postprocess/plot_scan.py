@@ -162,14 +162,14 @@ def mark_missing(ax, x, y, bad, nan, label_runs):
     y None: along the bottom of a line panel (axes coordinates: no value is implied), else
     at the runs' (x, y) of a map."""
     transform = ax.get_xaxis_transform() if y is None else ax.transData
-    for mask, style, label in ((bad, {"marker": "x", "color": "k", "ms": 7},
-                                "not completed"),
-                               (nan, {"marker": "o", "mfc": "none", "mec": "0.45", "ms": 6},
-                                "completed, no value (NaN)")):
+    for mask, marker, label in ((bad, {"marker": "x", "color": "k", "ms": 7},
+                                 "not completed"),
+                                (nan, {"marker": "o", "mfc": "none", "mec": "0.45", "ms": 6},
+                                 "completed, no value (NaN)")):
         if mask.any():
             ys = np.full(mask.sum(), 0.03) if y is None else y[mask]
             ax.plot(x[mask], ys, ls="none", transform=transform, clip_on=False,
-                    label=label if label_runs else None, **style)
+                    label=label if label_runs else None, **marker)
 
 
 def line_figure(s, key, outcomes, path=None, ax=None):

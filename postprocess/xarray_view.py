@@ -14,7 +14,7 @@ def run_to_xarray(run):
     except ImportError as err:
         raise ImportError("Run.to_xarray needs xarray (Debian: apt install python3-xarray; "
                           "in a venv made with --system-site-packages it is then seen)") from err
-    n, nt = len(run.r_c), run.n_snapshots
+    n = len(run.r_c)
     n_mon = len(run.pebble_names)
     coords = {"t": ("t", run.time, _attrs(run, "snapshots/time")),
               "r": ("r", run.r_c, _attrs(run, "grid/r_c")),

@@ -16,7 +16,6 @@ import subprocess
 import time
 import warnings
 
-import h5py
 import numpy as np
 
 import postprocess as panoptic
@@ -212,7 +211,7 @@ def command_line(c, run, wd):
 
 def xarray_view(c, run):
     try:
-        import xarray  # noqa: F401
+        import xarray  # noqa: F401 (only whether it is there)
     except ImportError:
         try:
             run.to_xarray()
