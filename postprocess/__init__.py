@@ -38,14 +38,20 @@ __version__ = "0.1.0"
 __all__ = [*_EXPORTS, "__version__"]
 
 
+_SUBMODULES = ("reader", "scan", "launch", "observation", "overlay", "style", "plot",
+               "plot_run", "plot_scan", "plot_observe", "analytic", "xarray_view")
+
+
 def __getattr__(name):
+    import importlib
+    if name in _SUBMODULES:
+        return importlib.import_module(f".{name}", __name__)
     if name not in _EXPORTS:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    import importlib
     value = getattr(importlib.import_module(f".{_EXPORTS[name]}", __name__), name)
     globals()[name] = value
     return value
 
 
 def __dir__():
-    return sorted([*globals(), *_EXPORTS])
+    return sorted([*globals(), *_EXPORTS, *_SUBMODULES])

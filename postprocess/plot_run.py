@@ -155,6 +155,19 @@ def done(fig, run, out_path, own):
         style.savefig(fig, out_path)
 
 
+def legend_above(ax, own, ncol, **kwargs):
+    """The legend in a band above the axes of a figure made here (own), in ncol columns
+    (one on a figure narrower than 5 in: the labels are long); inside the axes of a caller's figure
+    (ax=), whose layout is the caller's."""
+    if not own:
+        return ax.legend(loc="best", fontsize="x-small", framealpha=0.8, **kwargs)
+    if style.narrow():
+        ncol = 1
+    return ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.01, 1.0, 0.1), mode="expand",
+                     ncol=ncol, fontsize=7.5, title_fontsize=7.5, frameon=False,
+                     borderaxespad=0.0, **kwargs)
+
+
 def note(ax, text, y=0.5):
     """Grey explanatory text centred in the axes."""
     ax.text(0.5, y, text, transform=ax.transAxes, ha="center", va="center", fontsize=9,
@@ -339,9 +352,7 @@ def plot_map(run, out_path=None, field="St", quantity="Stokes number St", cmap="
     ax.set_xlabel(r"$r$ [au]")
     ax.set_ylabel(r"$t$ [yr]")
     if handles:
-        ax.legend(handles=handles, loc="lower left", bbox_to_anchor=(0.0, 1.01, 1.0, 0.1),
-                  mode="expand", ncol=2, fontsize=7.5, frameon=False, borderaxespad=0.0,
-                  handlelength=2.2)
+        legend_above(ax, own, 2, handles=handles, handlelength=2.2)
     suptitle(fig, own, title(run, f"{quantity}(r, t)"))
     done(fig, run, out_path, own)
     return fig
@@ -503,10 +514,8 @@ def plot_pebble_flux(run, out_path=None, ax=None):
         bottom.set_xlim(time[positive].min(), time[positive].max())
         label_minor_log_ticks(bottom.xaxis, time[positive].min(), time[positive].max())
     columns = 3 if np.isfinite(run.r_snow_au) else 2     # room for the T_sub label
-    ax_f.legend(loc="lower left", bbox_to_anchor=(0.0, 1.01, 1.0, 0.1), mode="expand",
-                ncol=min(columns, len(order)), fontsize=7.5, frameon=False, borderaxespad=0.0,
-                title=f"monitor: total mass through by {plot.format_years(time[-1])}",
-                title_fontsize=7.5)
+    legend_above(ax_f, own, min(columns, len(order)),
+                 title=f"monitor: total mass through by {plot.format_years(time[-1])}")
     if outward:
         ax_f.text(0.99, 0.02, "gaps: net outward flow (not shown)", transform=ax_f.transAxes,
                   ha="right", va="bottom", fontsize=7, color="0.4")
@@ -601,8 +610,7 @@ def plot_sigma_pl(run, out_path=None, ax=None):
                 f"{run.r_f[0]:.3g}$-${run.r_f[-1]:.4g} au)")
     ax.set_xlabel(r"$r$ [au]")
     ax.set_ylabel(r"$\Sigma$ [g cm$^{-2}$]")
-    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.01, 1.0, 0.1), mode="expand", ncol=2,
-              fontsize=7.5, frameon=False, borderaxespad=0.0)
+    legend_above(ax, own, 2)
     suptitle(fig, own, title(run, f"planetesimals at {plot.format_years(run.time[last])}"))
     done(fig, run, out_path, own)
     return fig
@@ -688,9 +696,7 @@ def plot_mass_budget(run, out_path=None, ax=None):
     shown = columns[positive][columns[positive] > floor]
     ax.set_ylim(max(shown.min() if shown.size else floor, floor) / 2.0, initial * 3.0)
     ax.set_ylabel(r"dust mass [$M_\oplus$]")
-    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.01, 1.0, 0.1), mode="expand", ncol=2,
-              fontsize=7.5, frameon=False, borderaxespad=0.0, title_fontsize=7.5,
-              title=f"mass at {plot.format_years(time[-1])}")
+    legend_above(ax, own, 2, title=f"mass at {plot.format_years(time[-1])}")
     if absent:
         ax.text(0.01, 0.02, "zero throughout: " + ", ".join(absent), transform=ax.transAxes,
                 fontsize=7, color="0.4", va="bottom")

@@ -44,7 +44,7 @@ def using(width=None, footer=None, title=None, format=None):
         if format not in FORMATS:
             raise ValueError(f"format {format!r}: one of {', '.join(FORMATS)}")
         _options["format"] = format
-    rc = {"font.size": COLUMN_FONT_SIZE} if (_options["width"] or 99) < 5.0 else {}
+    rc = {"font.size": COLUMN_FONT_SIZE} if narrow() else {}
     try:
         with matplotlib.rc_context(rc):
             yield dict(_options)
@@ -53,12 +53,18 @@ def using(width=None, footer=None, title=None, format=None):
         _options.update(saved)
 
 
+def narrow():
+    """True when the chosen width is under 5 in (a column): fewer legend columns."""
+    return bool(_options["width"]) and _options["width"] < 5.0
+
+
 def new_figure(width, height, **kwargs):
-    """An Agg-backed Figure of the given size [in], scaled to the chosen width (the
-    aspect kept)."""
+    """An Agg-backed Figure of the given size [in], at the chosen width; the height
+    scales as the square root of the width's ratio (a narrow figure keeps room for its
+    legend and labels)."""
     chosen = _options["width"]
     if chosen:
-        width, height = chosen, height * chosen / width
+        width, height = chosen, height * (chosen / width) ** 0.5
     fig = Figure(figsize=(width, height), dpi=150, layout="constrained", **kwargs)
     FigureCanvasAgg(fig)
     return fig
