@@ -269,13 +269,10 @@ def map_figure(s, kx, ky, o, path=None, ax=None):
         sampled_ticks(ax, "y", g[1], sy == "log")
     ax.set_xlabel(key_label(kx))
     ax.set_ylabel(key_label(ky))
-    ax.set_title(style.title(f"{OUTCOME_LABELS.get(o, o)} ({s.get('scene') or 'scan'}, "
-                             f"{len(z)} runs)"), fontsize=10)
-    fig.colorbar(im, ax=ax, label=label(o, s))
+    heading = f"{OUTCOME_LABELS.get(o, o)} ({s.get('scene') or 'scan'}, {len(z)} runs)"
     left_out = left_out_note(s, (kx, ky))
-    if left_out:
-        ax.text(0.0, -0.16, left_out, transform=ax.transAxes, fontsize=7, color="0.3",
-                va="top", ha="left", wrap=True)
+    ax.set_title(style.title(heading + (f"\n{left_out}" if left_out else "")), fontsize=9)
+    fig.colorbar(im, ax=ax, label=label(o, s))
     if path is not None:
         style.savefig(fig, path, dpi=150)
     return fig
@@ -294,8 +291,7 @@ def left_out_note(s, shown):
             parts.append(f"{k} ({len(np.unique(v))} values)")
     if not parts:
         return ""
-    return ("not shown: " + ", ".join(parts) + " (each point is one run; runs that differ "
-            "only there overlap)")
+    return "not shown: " + ", ".join(parts) + " (runs that differ only there overlap)"
 
 
 def main(argv=None):
