@@ -264,9 +264,10 @@ def map_figure(s, kx, ky, o, path=None, ax=None):
         ax.set_xscale("log")
     if sy == "log":
         ax.set_yscale("log")
-    if g is not None:  # after the scales, which reset the tick locators
-        sampled_ticks(ax, "x", g[0], sx == "log")
-        sampled_ticks(ax, "y", g[1], sy == "log")
+    # after the scales, which reset the tick locators; a scatter's too (a grid scan with
+    # an axis left out), where at most 10 values are sampled
+    sampled_ticks(ax, "x", x if g is None else g[0], sx == "log")
+    sampled_ticks(ax, "y", y if g is None else g[1], sy == "log")
     ax.set_xlabel(key_label(kx))
     ax.set_ylabel(key_label(ky))
     heading = f"{OUTCOME_LABELS.get(o, o)} ({s.get('scene') or 'scan'}, {len(z)} runs)"
