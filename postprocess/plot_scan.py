@@ -140,13 +140,13 @@ def label(name, s):
 
 
 def sampled_ticks(ax, which, values, log):
-    """Ticks at the sampled values of an axis of at most 10 of them (labels %.3g), so
+    """Ticks at the sampled values of an axis of at most 10 of them (labels %.4g), so
     that every run's value can be read off."""
     v = np.unique(values)
     if len(v) > 10:
         return
     axis = ax.xaxis if which == "x" else ax.yaxis
-    axis.set_ticks(v, labels=[f"{x:.3g}" for x in v])
+    axis.set_ticks(v, labels=[f"{x:.4g}" for x in v])
     axis.set_minor_locator(matplotlib.ticker.NullLocator())
 
 
