@@ -33,11 +33,6 @@ COLORS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:b
 PROFILE_DECADES = 4     # y range of the profile panel below its maximum
 
 
-def load(path):
-    """The observation at `path` (load_observation)."""
-    return load_observation(path)
-
-
 def lam_label(lam):
     return f"{lam:g} mm"
 
