@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "disk/gas_defaults.hpp"
+
 namespace panoptic {
 
 class Grid;
@@ -17,13 +19,13 @@ struct Star {
 };
 
 struct ThermalParams {
-  double T_1au = 280.0;      //!< temperature at 1 au for L = L_sun [K]
-  double q = 0.5;            //!< T ∝ r^-q
-  double T_floor = 10.0;     //!< [K]
-  double mu = 2.34;          //!< mean molecular weight
-  double alpha = 1e-3;       //!< Shakura-Sunyaev alpha
-  double sigma_mol = 2e-15;  //!< molecular cross section [cm^2]
-  double T_sub = 170.0;      //!< ice sublimation temperature [K]
+  double T_1au = gas_defaults::kT1au;          //!< temperature at 1 au for L = L_sun [K]
+  double q = gas_defaults::kQ;                 //!< T ∝ r^-q
+  double T_floor = gas_defaults::kTFloor;      //!< [K]
+  double mu = gas_defaults::kMu;               //!< mean molecular weight
+  double alpha = gas_defaults::kAlpha;         //!< Shakura-Sunyaev alpha
+  double sigma_mol = gas_defaults::kSigmaMol;  //!< molecular cross section [cm^2]
+  double T_sub = gas_defaults::kTSub;          //!< ice sublimation temperature [K]
 };
 
 class GasDisk {

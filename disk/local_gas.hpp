@@ -8,14 +8,10 @@
 //! cgs.
 #include <cmath>
 
+#include "disk/gas_defaults.hpp"
 #include "src/core/units.hpp"
 
 namespace panoptic::physics {
-
-//! Mean molecular weight (spec §1.1) [-].
-inline constexpr double kMuDefault = 2.34;
-//! Molecular collision cross-section of H2 (spec §1.6) [cm^2].
-inline constexpr double kSigmaMolDefault = 2e-15;
 
 //! Gas quantities of one cell at the midplane, all cgs. Filled once per cell by the
 //! engine (directly, or with make_local_gas()). The quantities that follow the gas
@@ -77,8 +73,8 @@ LocalGasT<G> with_density_ratio(const LocalGas& g, const G& ratio) {
 //! general profiles), mu [-], sigma_mol [cm^2].
 inline LocalGas make_local_gas(double sigma_g, double temperature, double r,
                                double m_star, double alpha, double dlnp_dlnr,
-                               double mu = kMuDefault,
-                               double sigma_mol = kSigmaMolDefault) {
+                               double mu = gas_defaults::kMu,
+                               double sigma_mol = gas_defaults::kSigmaMol) {
   using units::kBoltzmann, units::kG, units::kMassH, units::kPi;
   LocalGas g;
   g.sigma_g = sigma_g;

@@ -3,11 +3,26 @@
 // and a unit test keeps the two identical. Physics defaults cite physics-spec sections.
 //
 // NEW_PROCESS: add the keys of a new process here, in a table of its own.
+#include <charconv>
+#include <cmath>
+
+#include "disk/gas_defaults.hpp"
 #include "src/scene/config.hpp"
 #include "src/scene/toml_literal.hpp"
 
 namespace panoptic {
 namespace {
+
+// A default as the schema writes it: below 0.01 with an exponent ("1e-3", as the
+// reference lists small numbers), else as a TOML float ("280.0").
+std::string literal(double x) {
+  if (x == 0.0 || std::abs(x) >= 0.01) return toml_real(x);
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::scientific);
+  std::string s(buf, r.ptr);
+  if (const size_t e = s.find("e-0"); e != std::string::npos) s.erase(e + 2, 1);  // e-03
+  return s;
+}
 
 KeySpec real(std::string key, std::string def, std::string unit, std::string doc,
              std::optional<double> min = std::nullopt, bool min_excl = false,
@@ -153,11 +168,13 @@ std::vector<KeySpec> make_keys() {
                 "r^gamma; an evolving gas uses nu = alpha c_s H ∝ r^(3/2 - q) whatever "
                 "gamma is)",
                 -2.0, false, 2.0, true)),
-      real("disk.T_1au", "280.0", "K", "temperature at 1 au for L_* = L_sun (§1.3)", 1.0,
-           false, 1e4, false),
-      real("disk.q", "0.5", "", "T ∝ r^-q (§1.3)", -2.0, false, 3.0, false),
-      real("disk.T_floor", "10.0", "K", "temperature floor (§1.3)", 0.0, false),
-      real("disk.mu", "2.34", "",
+      real("disk.T_1au", literal(gas_defaults::kT1au), "K",
+           "temperature at 1 au for L_* = L_sun (§1.3)", 1.0, false, 1e4, false),
+      real("disk.q", literal(gas_defaults::kQ), "", "T ∝ r^-q (§1.3)", -2.0, false, 3.0,
+           false),
+      real("disk.T_floor", literal(gas_defaults::kTFloor), "K",
+           "temperature floor (§1.3)", 0.0, false),
+      real("disk.mu", literal(gas_defaults::kMu), "",
            "mean molecular weight (§1.1; 0.5 for ionised hydrogen, no gas is heavier "
            "than 100)",
            0.5, false, 100.0, false),
@@ -168,12 +185,14 @@ std::vector<KeySpec> make_keys() {
       // settles into ever thinner layers: the fiducial scene to 1 Myr took 185 s at
       // 1e-7, 39 s at 1e-8 and did not finish in 20 min at 1e-10; at 1e-50 it did not
       // reach 100 yr in 5 min, and at 1e-70 CVODE failed at t = 0.
-      real("disk.alpha", "1e-3", "",
+      real("disk.alpha", literal(gas_defaults::kAlpha), "",
            "Shakura-Sunyaev alpha, D_g = alpha c_s H (§1.5); below 1e-8 molecular "
            "viscosity would dominate",
            1e-8, false, 1.0, false),
-      positive("disk.sigma_mol", "2e-15", "cm^2", "molecular cross section (§1.6)"),
-      positive("disk.T_sub", "170.0", "K", "water-ice sublimation temperature (§1.7)"),
+      positive("disk.sigma_mol", literal(gas_defaults::kSigmaMol), "cm^2",
+               "molecular cross section (§1.6)"),
+      positive("disk.T_sub", literal(gas_defaults::kTSub), "K",
+               "water-ice sublimation temperature (§1.7)"),
 
       // [gas] spec §1.2, §6.1
       flag(
