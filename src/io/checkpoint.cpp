@@ -12,6 +12,7 @@
 #include "src/core/units.hpp"
 #include "src/io/durable_file.hpp"
 #include "src/io/h5.hpp"
+#include "src/scene/toml_literal.hpp"
 
 namespace fs = std::filesystem;
 
@@ -145,30 +146,6 @@ Checkpoint read_fields(hid_t f) {
 
 bool ends_with(std::string_view s, std::string_view suffix) {
   return s.size() >= suffix.size() && s.substr(s.size() - suffix.size()) == suffix;
-}
-
-// A scene value as TOML, for messages.
-std::string value_text(const ConfigValue& v) {
-  struct Visitor {
-    static std::string real(double x) {
-      char buf[32];
-      const auto r = std::to_chars(buf, buf + sizeof buf, x);
-      std::string s(buf, r.ptr);
-      // "200" would read back as an integer in a --set
-      if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-      return s;
-    }
-    std::string operator()(double x) const { return real(x); }
-    std::string operator()(long x) const { return std::to_string(x); }
-    std::string operator()(bool x) const { return x ? "true" : "false"; }
-    std::string operator()(const std::string& x) const { return "\"" + x + "\""; }
-    std::string operator()(const std::vector<double>& xs) const {
-      std::string out = "[";
-      for (std::size_t i = 0; i < xs.size(); ++i) out += (i ? ", " : "") + real(xs[i]);
-      return out + "]";
-    }
-  };
-  return std::visit(Visitor{}, v);
 }
 
 }  // namespace
@@ -393,13 +370,13 @@ std::vector<std::string> check_compatible(const Checkpoint& chk, const fs::path&
     if (may_change_on_restart(key)) {
       const auto text_of = [&](const Config& c) {
         const auto it = c.values_.find(key);
-        return it == c.values_.end() ? std::string("unset") : value_text(it->second);
+        return it == c.values_.end() ? std::string("unset") : toml_value(it->second);
       };
       allowed.push_back(key + " = " + text_of(cfg) + " (was " + text_of(before) + ")");
       continue;
     }
-    const std::string was = value_text(before.values_.at(key));
-    differing += "\n  " + key + " = " + value_text(cfg.values_.at(key)) + " (" +
+    const std::string was = toml_value(before.values_.at(key));
+    differing += "\n  " + key + " = " + toml_value(cfg.values_.at(key)) + " (" +
                  cfg.where(key) + "), the checkpoint has " + was;
     if (example.empty()) example = " (e.g. --set " + key + "=" + was + ")";
   }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "src/core/error.hpp"
+#include "src/scene/config_value.hpp"
 
 namespace panoptic {
 
@@ -47,8 +48,6 @@ struct KeySpec {
 
 //! Every key a scene may hold, grouped by table, in the order they are documented.
 const std::vector<KeySpec>& scene_keys();
-
-using ConfigValue = std::variant<double, long, bool, std::string, std::vector<double>>;
 
 //! The schema default of a real-valued key (`KeySpec::default_toml` as parsed for the
 //! scene; throws for a key that is not in the schema or not real).

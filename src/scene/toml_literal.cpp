@@ -61,4 +61,19 @@ std::string toml_string(std::string_view s) {
   return out + "\"";
 }
 
+std::string toml_value(const ConfigValue& v) {
+  struct Visitor {
+    std::string operator()(double x) const { return toml_real(x); }
+    std::string operator()(long x) const { return std::to_string(x); }
+    std::string operator()(bool x) const { return x ? "true" : "false"; }
+    std::string operator()(const std::string& x) const { return toml_string(x); }
+    std::string operator()(const std::vector<double>& xs) const {
+      std::string out = "[";
+      for (size_t i = 0; i < xs.size(); ++i) out += (i ? ", " : "") + toml_real(xs[i]);
+      return out + "]";
+    }
+  };
+  return std::visit(Visitor{}, v);
+}
+
 }  // namespace panoptic

@@ -1,9 +1,11 @@
 #pragma once
 //! Values written back as TOML literals that read back exactly: the resolved scene stored
 //! in every run file (src/scene/config.cpp) and the manifest of a scan
-//! (src/scan/scan_manifest.cpp).
+//! (src/scan/scan_manifest.cpp), and scene values in messages (src/io/checkpoint.cpp).
 #include <string>
 #include <string_view>
+
+#include "src/scene/config_value.hpp"
 
 namespace panoptic {
 
@@ -14,5 +16,8 @@ std::string shortest(double x);
 std::string toml_real(double x);
 //! A TOML basic string, quoted, with every character TOML requires escaped.
 std::string toml_string(std::string_view s);
+//! A scene value as the TOML literal that reads back as it: toml_real, an integer,
+//! true/false, toml_string, or a list of toml_real.
+std::string toml_value(const ConfigValue& v);
 
 }  // namespace panoptic
