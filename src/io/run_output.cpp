@@ -14,7 +14,7 @@
 
 #include "src/core/error.hpp"
 #include "src/io/durable_file.hpp"
-#include "src/solver/cvode_integrator.hpp"
+#include "src/solver/solver_stats.hpp"
 
 namespace panoptic {
 namespace {

@@ -12,7 +12,7 @@
 #include <random>
 #include <sstream>
 
-#include "src/io/checkpoint.hpp"
+#include "src/core/digest.hpp"
 #include "src/model/scene_validation.hpp"
 #include "src/scene/toml_guard.hpp"
 #include "src/scene/toml_literal.hpp"

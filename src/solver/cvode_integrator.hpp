@@ -9,20 +9,9 @@
 #include <vector>
 
 #include "src/solver/disk_model.hpp"
+#include "src/solver/solver_stats.hpp"
 
 namespace panoptic {
-
-struct SolverStats {
-  long nst = 0;      //!< steps
-  long nfe = 0;      //!< RHS evaluations (excluding those for difference quotients: none)
-  long nje = 0;      //!< Jacobian evaluations
-  long nsetups = 0;  //!< linear-solver set-ups (KLU factorisations)
-  long netf = 0;     //!< error-test failures
-  long nni = 0;      //!< nonlinear (Newton) iterations
-  long nncf = 0;     //!< nonlinear convergence failures
-  long nreinit = 0;  //!< re-initialisations
-  double h_last = 0.0;  //!< last step size [s]
-};
 
 //! Wall time spent in each part of the integration, for benchmarks (see
 //! CvodeIntegrator::set_profile): the model's right-hand side and Jacobian, and KLU's
