@@ -12,10 +12,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -26,7 +23,10 @@
 
 #include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
 #include "src/core/error.hpp"
+#include "src/core/exit_codes.hpp"
+#include "src/core/signals.hpp"
 #include "src/core/units.hpp"
+#include "src/core/wall_clock.hpp"
 #include "src/io/checkpoint.hpp"
 #include "src/io/durable_file.hpp"
 #include "src/io/run_output.hpp"
@@ -44,53 +44,16 @@ using namespace panoptic;
 
 namespace {
 
-constexpr int kExitStopped = 75;  // EX_TEMPFAIL: stopped, restart from the checkpoint
-
-std::atomic<int> g_signal{0};
-volatile std::sig_atomic_t g_seen_int = 0, g_seen_term = 0, g_parent_stop = 0;
-extern "C" void on_signal(int sig, siginfo_t* info, void*) {
-  // The stop a scan forwards to its runs (the parent's kill) is not a second signal: a
-  // batch system ending a job, or mpirun, signals every process of it, so the run may
-  // have had the same SIGTERM directly, just before or after.
-  const bool from_parent =
-      info != nullptr && info->si_code == SI_USER && info->si_pid == getppid();
-  volatile std::sig_atomic_t& seen = sig == SIGINT ? g_seen_int : g_seen_term;
-  if (seen && !from_parent && !g_parent_stop) {
-    // A second Ctrl-C ends the program at once (the checkpoint on disk stays whole: it
-    // is replaced by rename).
-    std::signal(sig, SIG_DFL);
-    raise(sig);
-    return;
-  }
-  if (from_parent) g_parent_stop = 1;
-  seen = 1;
-  g_signal = sig;
-}
-
-void on_stop_signals() {
-  struct sigaction sa {};
-  sa.sa_sigaction = on_signal;
-  sa.sa_flags = SA_SIGINFO | SA_RESTART;  // as std::signal: slow calls (waitpid) go on
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
-
 //! Thrown to stop the run at the next step or snapshot, with why.
 struct Stop {
   std::string reason;
 };
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 //! One status line on a terminal, overwritten in place; nothing when stdout is a file.
 class Progress {
  public:
   Progress(double t_end)
-      : t_end_(t_end), tty_(isatty(STDOUT_FILENO)), start_(Clock::now()) {}
+      : t_end_(t_end), tty_(isatty(STDOUT_FILENO)), start_(WallClock::now()) {}
   void update(double t, long nst) {
     if (!tty_) return;
     const double wall = seconds_since(start_);
@@ -111,7 +74,7 @@ class Progress {
  private:
   double t_end_;
   bool tty_;
-  Clock::time_point start_;
+  WallClock::time_point start_;
   double last_ = 0.0;
 };
 
@@ -224,14 +187,8 @@ int run(const RunArgs& a) {
   // the checkpoint and exit 75, instead of killing the process before the handlers are
   // in place. A parent (panoptic scan) may have blocked them until now; a stop that
   // arrived meanwhile is delivered here.
-  on_stop_signals();
-  {
-    sigset_t stop_signals;
-    sigemptyset(&stop_signals);
-    sigaddset(&stop_signals, SIGTERM);
-    sigaddset(&stop_signals, SIGINT);
-    sigprocmask(SIG_UNBLOCK, &stop_signals, nullptr);
-  }
+  install_stop_handlers(SecondStop::kUnlessFromParent);
+  block_stop_signals(false);
   // 2 scene
   const Config cfg = load_scene(a.scene, a.overrides);
   validate_scene(cfg);
@@ -299,7 +256,7 @@ int run(const RunArgs& a) {
   if (restart) cvode.carry_stats(restart->chk.stats);
   const long index0 = restart ? restart->chk.snapshot_index : 0;
   const double wall0 = restart ? restart->chk.wall_s : 0.0;
-  const auto start = Clock::now();
+  const auto start = WallClock::now();
   // What a checkpoint of the snapshot just written holds; `last` is kept in memory so
   // that a stop between snapshots can checkpoint the last one. Its row digests are
   // filled in only when it is written (checkpoint_last), from the rows counted in
@@ -366,7 +323,7 @@ int run(const RunArgs& a) {
   CheckpointSchedule schedule(cfg.real("checkpoint.every_wall_s"),
                               cfg.integer("checkpoint.every_snapshots"), 0.0);
   const auto stop_if_asked = [&] {
-    if (g_signal != 0) throw Stop{g_signal == SIGINT ? "SIGINT" : "SIGTERM"};
+    if (stop_signal() != 0) throw Stop{stop_signal_name(stop_signal())};
     if (max_wall > 0.0 && seconds_since(start) >= max_wall)
       throw Stop{"--max-wall " + a.max_wall};
   };
@@ -410,7 +367,7 @@ int run(const RunArgs& a) {
     progress.done();
     checkpoint_last();
     status = "stopped by " + stop.reason + "; restart from " + chk_path.string();
-    code = kExitStopped;
+    code = exit_codes::kStopped;
     std::printf(
         "stopped by %s at t = %.4g yr; the last snapshot (snapshot %ld, t = %.4g yr) "
         "is checkpointed in %s\nrestart with: %s\n",
@@ -695,7 +652,7 @@ int run_command_line(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
-    return 2;
+    return exit_codes::kBadInput;
   }
 
   try {
@@ -740,7 +697,7 @@ int run_command_line(int argc, char** argv) {
     return e.exit_code();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "panoptic: internal error: %s\n", e.what());
-    return 1;
+    return exit_codes::kInternal;
   }
   return 0;
 }

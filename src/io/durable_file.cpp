@@ -1,6 +1,7 @@
 #include "src/io/durable_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -11,6 +12,7 @@
 #include "src/core/error.hpp"
 
 namespace panoptic {
+namespace fs = std::filesystem;
 
 void fsync_path(const std::filesystem::path& path, bool directory) {
   const int fd =
@@ -30,6 +32,62 @@ void rename_or_throw(const std::filesystem::path& from, const std::filesystem::p
   if (::rename(from.c_str(), to.c_str()) != 0)
     throw IoError("cannot rename " + from.string() + " to " + to.string() + " (" +
                   std::strerror(errno) + ")");
+}
+
+void write_atomically(const fs::path& path, std::string_view text) {
+  commit_temporary(write_temporary(path, text), path);
+}
+
+fs::path write_temporary(const fs::path& path, std::string_view text) {
+  // A name no other process can hold: processes of one scan on different nodes of a
+  // shared file system (MPI ranks, array tasks) may have the same PID, and ".tmpPID"
+  // would then be one file written by both. mkstemp creates it exclusively (O_EXCL).
+  std::string name = path.string() + ".tmpXXXXXX";
+  const int fd = mkostemp(name.data(), O_CLOEXEC);
+  const fs::path tmp = name;
+  if (fd < 0)
+    throw IoError(tmp.string() + ": cannot write (" + std::strerror(errno) + ")");
+  fchmod(fd, 0644);  // mkstemp's 0600 would hide the records from the user's group
+  // a failed write (disk full, quota: some file systems report it only at fsync or
+  // close) leaves the old file and no temporary one, which would fill the disk further
+  const auto fail = [&](const std::string& what, int e) {
+    unlink(tmp.c_str());
+    throw IoError(tmp.string() + ": " + what + " (" + std::strerror(e) + ")");
+  };
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int e = n < 0 ? errno : EIO;
+      close(fd);
+      fail("write failed", e);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (fsync(fd) != 0) {
+    const int e = errno;
+    close(fd);
+    fail("fsync failed", e);
+  }
+  if (close(fd) != 0) fail("close failed", errno);
+  return tmp;
+}
+
+void commit_temporary(const fs::path& tmp, const fs::path& path) {
+  try {
+    fsync_path(tmp, false);
+  } catch (const IoError&) {
+    unlink(tmp.c_str());
+    throw;
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    unlink(tmp.c_str());
+    throw IoError(path.string() + ": cannot rename " + tmp.string() + " (" +
+                  std::strerror(e) + ")");
+  }
+  fsync_path(path.has_parent_path() ? path.parent_path() : fs::path("."), true);
 }
 
 bool has_hdf5_signature(const std::filesystem::path& path) {

@@ -1,8 +1,10 @@
 #pragma once
-//! Files that survive a crash: fsync of a file or a directory, and rename, each throwing
-//! IoError naming the path (checkpoints, and the output a restart rebuilds).
+//! Files that survive a crash: fsync of a file or a directory, rename, and the one
+//! atomic write of a whole file, each throwing IoError naming the path (checkpoints,
+//! the output a restart rebuilds, scan records and summaries, observe outputs).
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace panoptic {
 
@@ -12,6 +14,21 @@ namespace panoptic {
 void fsync_path(const std::filesystem::path& path, bool directory);
 //! rename(2): atomic replacement of `to` by `from` on the same file system.
 void rename_or_throw(const std::filesystem::path& from, const std::filesystem::path& to);
+//! Writes `text` to `path` atomically: write_temporary, then commit_temporary. At every
+//! moment of a crash `path` holds the old text or the new one; a failed write leaves the
+//! old file and no temporary one. Throws IoError.
+void write_atomically(const std::filesystem::path& path, std::string_view text);
+//! The first half of write_atomically, for files that must change together (write each,
+//! then commit each): writes `text` to a new temporary file beside `path` (a name no
+//! other process holds, mode 0644), fsynced; on failure none is left. Returns its name.
+std::filesystem::path write_temporary(const std::filesystem::path& path,
+                                      std::string_view text);
+//! Puts a finished temporary file in place of `path`: fsync of `tmp`, rename over
+//! `path`, fsync of the directory. `tmp` must be in the directory of `path` and closed;
+//! it may come from write_temporary or from a library that wrote it (an HDF5 file
+//! written to `<path>.tmp` and closed). On failure `tmp` is removed. Throws IoError.
+void commit_temporary(const std::filesystem::path& tmp,
+                      const std::filesystem::path& path);
 //! True when the file begins with the 8-byte HDF5 signature (a file panoptic wrote has
 //! no user block, so the signature is at offset 0; a truncated file keeps it).
 bool has_hdf5_signature(const std::filesystem::path& path);

@@ -15,7 +15,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <charconv>
 #include <chrono>
 #include <csignal>
@@ -31,7 +30,11 @@
 #include <thread>
 
 #include "src/core/error.hpp"
+#include "src/core/exit_codes.hpp"
+#include "src/core/signals.hpp"
+#include "src/core/wall_clock.hpp"
 #include "src/io/checkpoint.hpp"
+#include "src/io/durable_file.hpp"
 #include "src/scan/scan_exec.hpp"
 #include "src/scan/scan_manifest.hpp"
 #include "src/scan/scan_summary.hpp"
@@ -48,19 +51,9 @@ namespace panoptic {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr int kExitFailed = 3;
-constexpr int kExitStopped = 75;
+constexpr int kExitFailed = exit_codes::kFailed;
+constexpr int kExitStopped = exit_codes::kStopped;
 
-std::atomic<int> g_stop{0};
-extern "C" void on_stop(int sig) {
-  g_stop = sig;
-  std::signal(sig, SIG_DFL);  // a second signal ends the scan at once
-}
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 void nap() { std::this_thread::sleep_for(std::chrono::milliseconds(5)); }
 
 //! The number of processes mpirun started, from the environment of the launchers
@@ -224,7 +217,7 @@ class Pool {
   struct Running {
     ScanTask task;
     int slot = 0;
-    Clock::time_point start;
+    WallClock::time_point start;
     bool restart = false;
   };
   void launch(const ScanTask& t, int slot, bool restart) {
@@ -234,7 +227,7 @@ class Pool {
       run.argv.push_back(checkpoint_path(t.h5).string());
     }
     const pid_t pid = start_task(run);
-    running_[pid] = Running{t, slot, Clock::now(), restart};
+    running_[pid] = Running{t, slot, WallClock::now(), restart};
   }
   int slots_;
   std::string label_;
@@ -329,7 +322,8 @@ int mpi_worker(const MpiSession& mpi, int jobs) {
   bool asked = false, stopped = false, stopping = false;
   for (;;) {
     bool busy = false;
-    if (g_stop != 0 && !stopping) {  // mpirun forwards SIGTERM: let the runs checkpoint
+    if (stop_signal() != 0 &&
+        !stopping) {  // mpirun forwards SIGTERM: let the runs checkpoint
       stopping = true;
       pool.signal_all(SIGTERM);
     }
@@ -348,7 +342,8 @@ int mpi_worker(const MpiSession& mpi, int jobs) {
           const ScanTask t = ScanTask::deserialize(bytes);
           const RunRecord r = finish_task(t, W_EXITCODE(kExitStopped, 0), 0.0,
                                           "rank" + std::to_string(mpi.rank));
-          const double msg[3] = {static_cast<double>(r.id), 75.0, 0.0};
+          const double msg[3] = {static_cast<double>(r.id),
+                                 static_cast<double>(kExitStopped), 0.0};
           MPI_Send(msg, 3, MPI_DOUBLE, 0, kResult, MPI_COMM_WORLD);
         } else {
           stopped = true;
@@ -377,12 +372,12 @@ bool execute(Prepared& p, int jobs, [[maybe_unused]] int mpi_size) {
   [[maybe_unused]] int stopped_workers = 0;
   for (;;) {
     bool busy = false;
-    if (g_stop != 0 && !stopping) {
+    if (stop_signal() != 0 && !stopping) {
       stopping = true;
       std::printf(
           "scan: stopped by %s: the runs under way are stopped (they checkpoint); "
           "rerun the same command to continue\n",
-          g_stop == SIGINT ? "SIGINT" : "SIGTERM");
+          stop_signal_name(stop_signal()));
       std::fflush(stdout);
       p.todo.clear();
       pool.signal_all(SIGTERM);
@@ -483,7 +478,7 @@ int run_one_task(Prepared& p, long i) {
   Pool pool(1, "task");
   pool.start(p.tasks[static_cast<std::size_t>(i)]);
   for (;;) {
-    if (g_stop != 0) pool.signal_all(SIGTERM), g_stop = 0;
+    if (stop_signal() != 0) pool.signal_all(SIGTERM), clear_stop_signal();
     if (const auto r = pool.poll()) {
       Progress(p, 1).report(*r);
       if (r->outcome == "completed") return 0;
@@ -528,8 +523,7 @@ int run_scan(const ScanOptions& o) {
                         "the path of panoptic or of a script taking the arguments of "
                         "panoptic run");
   }
-  std::signal(SIGINT, on_stop);
-  std::signal(SIGTERM, on_stop);
+  install_stop_handlers(SecondStop::kEndsAtOnce);
   if (o.dry_run) {
     const Prepared p = prepare(o);
     std::fputs(

@@ -17,7 +17,10 @@
 #include <sstream>
 
 #include "src/core/error.hpp"
+#include "src/core/exit_codes.hpp"
+#include "src/core/signals.hpp"
 #include "src/io/checkpoint.hpp"
+#include "src/io/durable_file.hpp"
 #include "src/io/h5.hpp"
 
 namespace panoptic {
@@ -158,11 +161,7 @@ pid_t start_task(const ScanTask& task) {
     // SIGTERM/SIGINT stay blocked (pending) until `panoptic run` has installed its
     // handlers and unblocks them: a stop that arrives while the run is starting is then
     // a checkpointed stop (exit 75), not a death by the default action.
-    sigset_t stop_signals;
-    sigemptyset(&stop_signals);
-    sigaddset(&stop_signals, SIGTERM);
-    sigaddset(&stop_signals, SIGINT);
-    sigprocmask(SIG_BLOCK, &stop_signals, nullptr);
+    block_stop_signals(true);
     const int out =
         open(task.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     const int err =
@@ -193,9 +192,9 @@ RunRecord finish_task(const ScanTask& task, int wait_status, double wall_s,
   const std::string err_tail = error_line(task.err).value_or(tail(task.err, 3, 600));
   if (WIFEXITED(wait_status)) {
     r.exit_code = WEXITSTATUS(wait_status);
-    r.outcome = r.exit_code == 0    ? "completed"
-                : r.exit_code == 75 ? "interrupted"
-                                    : "failed";
+    r.outcome = r.exit_code == 0                      ? "completed"
+                : r.exit_code == exit_codes::kStopped ? "interrupted"
+                                                      : "failed";
     if (r.exit_code != 0) r.error = "exit code " + std::to_string(r.exit_code);
   } else if (WIFSIGNALED(wait_status)) {
     const int sig = WTERMSIG(wait_status);
@@ -332,55 +331,6 @@ RunInspection inspect_run(const fs::path& h5path, const std::string& config_toml
     r.why = std::string("unreadable: ") + e.what();
   }
   return r;
-}
-
-void write_atomically(const fs::path& path, std::string_view text) {
-  commit_temporary(write_temporary(path, text), path);
-}
-
-fs::path write_temporary(const fs::path& path, std::string_view text) {
-  // A name no other process can hold: processes of one scan on different nodes of a
-  // shared file system (MPI ranks, array tasks) may have the same PID, and ".tmpPID"
-  // would then be one file written by both. mkstemp creates it exclusively (O_EXCL).
-  std::string name = path.string() + ".tmpXXXXXX";
-  const int fd = mkostemp(name.data(), O_CLOEXEC);
-  const fs::path tmp = name;
-  if (fd < 0)
-    throw IoError(tmp.string() + ": cannot write (" + std::strerror(errno) + ")");
-  fchmod(fd, 0644);  // mkstemp's 0600 would hide the records from the user's group
-  // a failed write (disk full, quota: some file systems report it only at fsync or
-  // close) leaves the old file and no temporary one, which would fill the disk further
-  const auto fail = [&](const std::string& what, int e) {
-    unlink(tmp.c_str());
-    throw IoError(tmp.string() + ": " + what + " (" + std::strerror(e) + ")");
-  };
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int e = n < 0 ? errno : EIO;
-      close(fd);
-      fail("write failed", e);
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (fsync(fd) != 0) {
-    const int e = errno;
-    close(fd);
-    fail("fsync failed", e);
-  }
-  if (close(fd) != 0) fail("close failed", errno);
-  return tmp;
-}
-
-void commit_temporary(const fs::path& tmp, const fs::path& path) {
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int e = errno;
-    unlink(tmp.c_str());
-    throw IoError(path.string() + ": cannot rename " + tmp.string() + " (" +
-                  std::strerror(e) + ")");
-  }
 }
 
 }  // namespace panoptic

@@ -87,15 +87,4 @@ struct RunInspection {
 RunInspection inspect_run(const std::filesystem::path& h5, const std::string& config_toml,
                           double t_end_yr);
 
-//! Writes `text` to `path` atomically: a temporary file in the same directory, fsync,
-//! rename. Throws IoError.
-void write_atomically(const std::filesystem::path& path, std::string_view text);
-//! The two halves of write_atomically, for files that must change together: writes
-//! `text` to a new temporary file beside `path` (fsynced; on failure none is left) and
-//! returns its name; commit_temporary renames it over `path`. Throws IoError.
-std::filesystem::path write_temporary(const std::filesystem::path& path,
-                                      std::string_view text);
-void commit_temporary(const std::filesystem::path& tmp,
-                      const std::filesystem::path& path);
-
 }  // namespace panoptic

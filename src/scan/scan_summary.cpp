@@ -11,6 +11,7 @@
 #include <set>
 
 #include "src/core/error.hpp"
+#include "src/io/durable_file.hpp"
 #include "src/io/h5.hpp"
 #include "src/scan/scan_exec.hpp"
 

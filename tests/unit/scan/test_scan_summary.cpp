@@ -14,6 +14,7 @@
 #include <string>
 
 #include "src/core/error.hpp"
+#include "src/io/durable_file.hpp"
 #include "src/scan/scan_exec.hpp"
 #include "src/scan/scan_manifest.hpp"
 #include "src/scan/scan_summary.hpp"
