@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "src/observe/observe.hpp"
+#include "src/observe/emission.hpp"
 #include "src/observe/observe_image.hpp"
 
 namespace {

@@ -1,0 +1,13 @@
+#pragma once
+//! The writer of `panoptic observe`: an observation as an HDF5 file (layout: README
+//! "Synthetic observations").
+#include <filesystem>
+
+#include "src/observe/observation.hpp"
+
+namespace panoptic {
+
+//! Writes `o` to `path`: whole or not at all. Throws IoError when it cannot.
+void write_observation_file(const std::filesystem::path& path, const Observation& o);
+
+}  // namespace panoptic
