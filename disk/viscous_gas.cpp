@@ -102,4 +102,11 @@ void ViscousGas::add_jacobian(double, std::span<const double>,
   }
 }
 
+std::vector<OutputField> ViscousGas::output_fields() const {
+  return {{"m_out_gas", 0, "g", "cumulative gas accreted through r_in",
+           [this](std::span<const double> y) {
+             return std::vector<double>{y[layout_.global_index(g_out_)] * mass_unit_};
+           }}};
+}
+
 }  // namespace panoptic

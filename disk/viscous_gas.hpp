@@ -63,6 +63,8 @@ class ViscousGas : public PhysicsModule {
   void add_jacobian(double t, std::span<const double> y,
                     JacobianValues& jac) const override;
 
+  //! m_out_gas.
+  std::vector<OutputField> output_fields() const override;
   int sigma_slot() const { return slot_; }
   int m_out_slot() const { return g_out_; }
   const ViscousStencil& stencil() const { return stencil_; }

@@ -383,4 +383,20 @@ double DustTransport::mass_sublimated(std::span<const double> y) const {
   return g_sub_ < 0 ? 0.0 : y[layout_.global_index(g_sub_)] * mass_unit_;
 }
 
+std::vector<OutputField> DustTransport::output_fields() const {
+  const int n = layout_.n_cells();
+  const std::size_t cells = static_cast<std::size_t>(n);
+  return {{"sigma_d", cells, "g cm^-2", "dust surface density",
+           [this, n](std::span<const double> y) {
+             std::vector<double> sigma(n);
+             for (int i = 0; i < n; ++i) sigma[i] = y[layout_.index(i, slot_)];
+             return sigma;
+           }},
+          {"v_r", cells + 1, "cm s^-1", "dust radial velocity on the faces",
+           [this](std::span<const double> y) { return face_velocity(y); }},
+          {"mdot_d", cells + 1, "g s^-1",
+           "dust mass flow through the faces, positive outward",
+           [this](std::span<const double> y) { return mass_flow(y); }}};
+}
+
 }  // namespace panoptic

@@ -91,6 +91,8 @@ class DustTransport : public PhysicsModule {
   //! The budget terms it books: the mass through r_in (m_out_inner) and the ice
   //! sublimated at the snow line (m_sublimated; 0 without a snow line) [g].
   std::vector<BudgetTerm> budget_terms() const override;
+  //! sigma_d, v_r and mdot_d.
+  std::vector<OutputField> output_fields() const override;
   double mass_out(std::span<const double> y) const;         //!< through r_in [g]
   double mass_sublimated(std::span<const double> y) const;  //!< at the snow line [g]
   double mass_unit() const { return mass_unit_; }

@@ -127,4 +127,33 @@ std::pair<double, double> Planetesimals::rates(int cell,
   return {coag, si};
 }
 
+std::vector<OutputField> Planetesimals::output_fields() const {
+  const int n = layout_.n_cells();
+  const std::size_t cells = static_cast<std::size_t>(n);
+  // Sigma_pl of the channel in `slot` at every cell centre [g cm^-2]; empty when off
+  const auto sigma = [this, n](std::span<const double> y, int slot) {
+    std::vector<double> out(slot < 0 ? 0 : n);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = y[layout_.index(int(i), slot)];
+    return out;
+  };
+  std::vector<OutputField> fields{
+      {"sigma_pl", cells, "g cm^-2", "planetesimal surface density, all channels",
+       [this, n, sigma](std::span<const double> y) {
+         const auto c = sigma(y, coag_slot_), s = sigma(y, si_slot_);
+         std::vector<double> total(n, 0.0);
+         for (int i = 0; i < n; ++i)
+           total[i] = (c.empty() ? 0.0 : c[i]) + (s.empty() ? 0.0 : s[i]);
+         return total;
+       }}};
+  if (coag_slot_ >= 0)
+    fields.push_back(
+        {"sigma_pl_coag", cells, "g cm^-2", "planetesimals by direct coagulation",
+         [this, sigma](std::span<const double> y) { return sigma(y, coag_slot_); }});
+  if (si_slot_ >= 0)
+    fields.push_back(
+        {"sigma_pl_si", cells, "g cm^-2", "planetesimals by streaming instability",
+         [this, sigma](std::span<const double> y) { return sigma(y, si_slot_); }});
+  return fields;
+}
+
 }  // namespace panoptic

@@ -79,6 +79,8 @@ class Planetesimals : public PhysicsModule {
   //! (same state, same options: the same numbers, computed once per RHS).
   void use_growth_rates(const PorousGrowth* growth) { growth_module_ = growth; }
 
+  //! sigma_pl and that of each channel that is on.
+  std::vector<OutputField> output_fields() const override;
   int coag_slot() const { return coag_slot_; }  //!< -1 when the channel is off
   int si_slot() const { return si_slot_; }      //!< -1 when the channel is off
   //! Conversion rates of cell `cell` at state y [g cm^-2 s^-1]: {coagulation, SI}.

@@ -2,9 +2,11 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 #include "physics/modules/evolving_gas_ad.hpp"
+#include "src/core/units.hpp"
 
 namespace panoptic {
 
@@ -307,6 +309,47 @@ void PorousGrowth::add_jacobian_cells(double, std::span<const double> y,
 physics::ParticleRates<double> PorousGrowth::rates(int cell,
                                                    std::span<const double> y) const {
   return compute_rates(cell, &y[layout_.index(cell, 0)]);
+}
+
+std::vector<OutputField> PorousGrowth::output_fields() const {
+  const int n = layout_.n_cells();
+  const std::size_t cells = static_cast<std::size_t>(n);
+  // a value of every cell from its state yc and its rates r
+  const auto per_cell = [this, n](auto value) {
+    return [this, n, value](std::span<const double> y) {
+      std::vector<double> out(n);
+      for (int i = 0; i < n; ++i) out[i] = value(i, &y[layout_.index(i, 0)], y);
+      return out;
+    };
+  };
+  std::vector<OutputField> fields{
+      {"m", cells, "g", "mass of the mass-dominating particle",
+       per_cell([this](int i, const double* yc, auto) { return codec_.mass(i, yc); })},
+      {"phi", cells, "", "filling factor of the mass-dominating particle",
+       per_cell([this](int, const double* yc, auto) { return codec_.phi(yc); })},
+      {"a", cells, "cm", "radius of the mass-dominating particle",
+       per_cell([this](int i, const double*, auto y) { return rates(i, y).a; })},
+      {"rho_int", cells, "g cm^-3", "internal density phi rho0",
+       per_cell([this](int i, const double* yc, auto) {
+         return codec_.phi(yc) * species_[i].rho0;
+       })},
+      {"dv", cells, "cm s^-1", "collision speed used for growth (spec §3)",
+       per_cell([this](int i, const double*, auto y) { return rates(i, y).dv; })},
+      {"t_grow", cells, "yr", "growth time m/|dm/dt| (inf: growth halted)",
+       per_cell([this](int i, const double* yc, auto y) {
+         // +inf where growth has halted exactly (a saturated erosion switch gives
+         // dm/dt = 0)
+         const double dm_dt = rates(i, y).dm_dt;
+         return dm_dt != 0.0 ? codec_.mass(i, yc) / std::abs(dm_dt) / units::kYr
+                             : std::numeric_limits<double>::infinity();
+       })}};
+  if (opt_.eroding())
+    fields.push_back(
+        {"dv_ls", cells, "cm s^-1",
+         "collision speed against the small projectiles, which erosion compares with "
+         "v_eros (spec §3, §5.1-§5.2)",
+         per_cell([this](int i, const double*, auto y) { return rates(i, y).dv_ls; })});
+  return fields;
 }
 
 }  // namespace panoptic

@@ -163,6 +163,8 @@ class PorousGrowth : public PhysicsModule {
   //! and chained onto the caller's seeds (ad_chain).
   void rates_ad(int cell, const AD* yc, AD& dlnm_dt, AD& dlnphi_dt) const;
   const physics::GrowthOptions& options() const { return opt_; }
+  //! m, phi, a, rho_int, dv, t_grow and, with erosion, dv_ls.
+  std::vector<OutputField> output_fields() const override;
   //! Empties the memos of cell_rates and rates_ad (GrowthStokes::forget).
   void forget() const {
     memo_key_.clear();

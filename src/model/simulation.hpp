@@ -13,6 +13,7 @@
 #include "disk/gas_column.hpp"
 #include "disk/local_gas.hpp"
 #include "physics/optical_constants.hpp"
+#include "src/model/pebble_monitors.hpp"
 #include "src/model/scene_to_physics.hpp"
 #include "src/model/scene_validation.hpp"
 #include "src/scene/config.hpp"
@@ -36,14 +37,6 @@ namespace physics {
 struct Species;
 struct GrowthOptions;
 }  // namespace physics
-
-//! A radius where the pebble flux is recorded (spec §8): the face nearest to it.
-struct PebbleMonitor {
-  std::string name;      //!< "snow line", "r_in", "10 au"
-  double r_au = 0.0;     //!< radius of the face used [au]
-  int face = 0;          //!< face index (0 = r_in)
-  int global_slot = -1;  //!< cumulative-mass variable (m_out_dust for r_in)
-};
 
 // BudgetTerm: src/solver/physics_module.hpp (a module declares its own).
 
@@ -74,9 +67,13 @@ class Simulation {
   //! Snapshot times [s], t = 0 first, t_end last.
   std::vector<double> output_times() const;
 
-  //! Writes /grid, /disk and declares the snapshot fields.
+  //! The snapshot fields: those of the modules (PhysicsModule::output_fields), in the
+  //! order they were built, then the model's (Sigma_g, St, the budget terms, the pebble
+  //! flux).
+  const std::vector<OutputField>& output_fields() const { return output_fields_; }
+  //! Writes /grid, /disk, /pebbles and declares the snapshot fields (output_fields()).
   void prepare_output(RunOutput& out) const;
-  //! Every snapshot field at state y (cgs, as declared in prepare_output).
+  //! Every snapshot field at state y (as declared in output_fields()).
   std::map<std::string, std::vector<double>> snapshot_fields(
       std::span<const double> y) const;
 
@@ -115,6 +112,7 @@ class Simulation {
   //! Throws ConfigError when the gas disk, the local gas, the initial state or its
   //! right-hand side is not finite (and positive where it must be) in some cell.
   void check_start_is_finite() const;
+  std::vector<OutputField> make_output_fields() const;
   Config cfg_;
   Grid grid_;
   std::unique_ptr<GasDisk> disk_;
@@ -133,6 +131,8 @@ class Simulation {
   std::vector<PebbleMonitor> monitors_;
   std::vector<BudgetTerm> budget_terms_;
   std::unique_ptr<DiskModel> model_;
+  std::vector<const PhysicsModule*> modules_in_build_order_;
+  std::vector<OutputField> output_fields_;
   std::vector<double> sigma_d0_;
   double sigma_scale_ = 1.0, dust_mass0_ = 0.0, profile_dust_mass_ = 0.0;
 };

@@ -24,7 +24,17 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kFormedFraction = 1e-6;
 // 1 M_earth / Myr in g/s (spec §8: 1.892e14 g/s)
 constexpr double kMearthPerMyr = units::kMearth / units::kMyr;
+// the snapshot field of the first-formation times
+constexpr const char* kFirstFormation = "t_first_pl";
 }  // namespace
+
+std::vector<OutputField> RunDiagnostics::output_fields(const Simulation& sim) {
+  if (!sim.planetesimals()) return {};
+  return {{kFirstFormation, static_cast<std::size_t>(sim.grid().n_cells()), "yr",
+           "time of first planetesimal formation in each cell so far (NaN: not yet; "
+           "formed: Sigma_pl > /summary/formed_threshold)",
+           nullptr}};
+}
 
 RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_start)
     : sim_(sim), out_(out) {
@@ -52,6 +62,8 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
   for (int i = 0; i < n; ++i) sigma_max = std::max(sigma_max, y0[L.index(i, sd)]);
   threshold_.assign(n, kFormedFraction * sigma_max);
 
+  for (const OutputField& f : output_fields(sim))
+    out_.add_field(f.name, f.width, f.units, f.description);
   const std::size_t nm = sim.pebble_monitors().size();
   out_.add_series("timeseries", "time", 0, "yr",
                   "sample times (first CVODE step past each)");
@@ -112,7 +124,7 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
       ++next_sample_;
     if (sim.planetesimals()) {
       h5::Handle s = h5::open_group(out_.file(), "snapshots");
-      const auto rows = h5::read_doubles(s.get(), "t_first_pl");
+      const auto rows = h5::read_doubles(s.get(), kFirstFormation);
       if (rows.size() >= t_first_.size())
         for (std::size_t i = 0; i < t_first_.size(); ++i)
           t_first_[i] = rows[rows.size() - t_first_.size() + i] * kYr;
@@ -125,7 +137,7 @@ void RunDiagnostics::add_snapshot_fields(
   if (!sim_.planetesimals()) return;
   std::vector<double> t(t_first_.size());
   for (std::size_t i = 0; i < t.size(); ++i) t[i] = t_first_[i] / kYr;
-  fields["t_first_pl"] = std::move(t);
+  fields[kFirstFormation] = std::move(t);
 }
 
 void RunDiagnostics::on_step(double t, std::span<const double> y) {

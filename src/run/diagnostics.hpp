@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "src/solver/physics_module.hpp"
+
 namespace panoptic {
 
 class Simulation;
@@ -28,7 +30,11 @@ class RunDiagnostics {
   void on_step(double t, std::span<const double> y);
   //! Writes the buffered /timeseries rows (call before the snapshot's flush).
   void flush();
-  //! Adds the diagnostics' snapshot fields (t_first_pl) to `fields`.
+  //! The diagnostics' own snapshot fields, declared here as the modules declare theirs
+  //! (OutputField, filled from the run's history rather than from one state): the time of
+  //! first planetesimal formation, when a channel is on.
+  static std::vector<OutputField> output_fields(const Simulation& sim);
+  //! Adds the diagnostics' snapshot fields (output_fields) to `fields`.
   void add_snapshot_fields(std::map<std::string, std::vector<double>>& fields) const;
   //! Writes /summary and returns it as text for the terminal.
   std::string finish(double t, std::span<const double> y);

@@ -5,8 +5,8 @@
 //! nothing.
 //!
 //! NEW_PROCESS: derive from PhysicsModule, register its variables with the StateLayout in
-//! its constructor, and build it in Simulation (src/model/simulation.cpp) when the scene
-//! turns it on (README "Adding a physical process").
+//! its constructor, declare its snapshot fields (output_fields) and budget terms, and add
+//! its line to the registry (src/model/module_registry.cpp; src/model/README.md).
 #include <functional>
 #include <span>
 #include <string>
@@ -31,6 +31,19 @@ struct BudgetTerm {
   std::string description;   //!< dataset description
   bool in_snapshots = true;  //!< false: a column of the time series only (process off)
   std::function<double(std::span<const double>)> mass;  //!< [g] at state y
+};
+
+//! One field of the snapshots, /snapshots/<name>, a row per snapshot (style guide,
+//! "Output"): declared by the module that owns it (PhysicsModule::output_fields) or by
+//! the model (Simulation::output_fields), written with its units and description
+//! attributes and listed by `panoptic reference --outputs`.
+struct OutputField {
+  std::string name;         //!< dataset name ("sigma_d")
+  std::size_t width = 0;    //!< values per snapshot (0: one scalar)
+  std::string units;        //!< units attribute ("" for a pure number)
+  std::string description;  //!< description attribute
+  //! The values at state y, in `units`.
+  std::function<std::vector<double>(std::span<const double>)> fill;
 };
 
 class PhysicsModule {
@@ -61,6 +74,9 @@ class PhysicsModule {
   //! default. The module is built only when its process is on, so its terms are written
   //! to the snapshots (in_snapshots = true).
   virtual std::vector<BudgetTerm> budget_terms() const { return {}; }
+  //! The snapshot fields this module owns (OutputField), written after every snapshot;
+  //! none by default.
+  virtual std::vector<OutputField> output_fields() const { return {}; }
   //! add_jacobian() on the same rows as add_rhs_cells().
   virtual void add_jacobian_cells(double t, std::span<const double> y,
                                   JacobianValues& jac, int lo, int hi) const {

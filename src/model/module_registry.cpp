@@ -1,0 +1,113 @@
+#include "src/model/module_registry.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "disk/viscous_gas.hpp"
+#include "physics/modules/dust_transport.hpp"
+#include "physics/modules/planetesimals.hpp"
+#include "physics/modules/porous_growth.hpp"
+#include "src/model/scene_to_physics.hpp"
+#include "src/solver/grid.hpp"
+
+namespace panoptic {
+namespace {
+
+// Viscous evolution of the gas (spec §1.2): owns Sigma_g, which the others read.
+std::unique_ptr<PhysicsModule> build_viscous_gas(ModuleContext& c) {
+  auto gas = std::make_unique<ViscousGas>(c.layout, c.disk, c.grid, c.sigma_g_max,
+                                          c.cfg.str("gas.inner_bc") == "zero_torque");
+  c.gas.slot = gas->sigma_slot();
+  c.viscous = gas.get();
+  return gas;
+}
+
+// Radial transport of the dust (spec §6.1, §6.3): owns Sigma_d.
+std::unique_ptr<PhysicsModule> build_dust_transport(ModuleContext& c) {
+  auto transport = std::make_unique<DustTransport>(
+      c.layout, c.grid, c.disk, c.gas, c.viscous ? &c.viscous->stencil() : nullptr,
+      c.stokes, transport_options_from_config(c.cfg), c.sigma_d_max, c.dust_mass0);
+  c.codec.sigma_slot = transport->sigma_slot();
+  c.transport = transport.get();
+  return transport;
+}
+
+// The monitors and the snow line book global variables after every module's own.
+void finish_dust_transport(ModuleContext& c) {
+  // pebble-flux monitors (spec §8); r_in is booked as m_out_dust already
+  for (PebbleMonitor& mon : c.monitors)
+    mon.global_slot = mon.face > 0 ? c.transport->add_monitor(c.layout, mon.face)
+                                   : c.transport->m_out_slot();
+  // The snow line face: the first face with silicate inside and ice outside (spec §6.3).
+  const int n = c.grid.n_cells();
+  for (int f = 1; f < n; ++f)
+    if (c.inside_snow_line[f - 1] && !c.inside_snow_line[f])
+      c.transport->set_snowline(c.layout, f, c.cfg.real("snowline.f_ice"),
+                                c.growth ? c.codec.qm_slot : -1);
+}
+
+// The porous growth model (spec §4-§6.2): owns Q_m and Q_phi, which ride with the dust.
+std::unique_ptr<PhysicsModule> build_porous_growth(ModuleContext& c) {
+  auto growth = std::make_unique<PorousGrowth>(
+      c.layout, c.codec, c.cell_gas, *c.growth_stokes, c.species,
+      growth_options_from_config(c.cfg), c.sigma_d_max);
+  c.transport->add_passenger(
+      c.codec.qm_slot);  // spec §6.2: Q_m, Q_phi ride with the dust
+  if (c.codec.qphi_slot >= 0) c.transport->add_passenger(c.codec.qphi_slot);
+  c.growth = growth.get();
+  return growth;
+}
+
+// Planetesimal channels (spec §7), after the growth model whose particles they convert.
+// Without growth only the SI channel can run, on the prescribed St.
+std::unique_ptr<PhysicsModule> build_planetesimals(ModuleContext& c) {
+  auto pl = std::make_unique<Planetesimals>(c.layout, c.codec, c.cell_gas, c.stokes,
+                                            c.species, growth_options_from_config(c.cfg),
+                                            planetesimal_options_from_config(c.cfg),
+                                            c.sigma_d_max);
+  if (c.growth) pl->use_growth_rates(c.growth);
+  c.planetesimals = pl.get();
+  return pl;
+}
+
+// NEW_MODULE: one line here (build order = state layout order; a new process goes last).
+// The evaluation ranks keep the order in which the right-hand sides are summed (the
+// transport last): another order changes the last bits of every run.
+constexpr std::array<ModuleEntry, 4> kRegistry{{
+    {"viscous_gas", [](const Config& cfg) { return cfg.flag("gas.evolve"); },
+     build_viscous_gas, nullptr, 0},
+    {"dust_transport", [](const Config&) { return true; }, build_dust_transport,
+     finish_dust_transport, 3},
+    {"porous_growth", [](const Config& cfg) { return cfg.flag("growth.enabled"); },
+     build_porous_growth, nullptr, 1},
+    {"planetesimals",
+     [](const Config& cfg) {
+       return cfg.flag("planetesimals.coagulation") ||
+              cfg.str("planetesimals.si") != "none";
+     },
+     build_planetesimals, nullptr, 2},
+}};
+
+}  // namespace
+
+std::span<const ModuleEntry> module_registry() { return kRegistry; }
+
+std::vector<std::unique_ptr<PhysicsModule>> build_modules(ModuleContext& ctx) {
+  std::vector<std::pair<int, std::unique_ptr<PhysicsModule>>> built;
+  std::vector<const ModuleEntry*> on;
+  for (const ModuleEntry& e : module_registry())
+    if (e.enabled(ctx.cfg)) {
+      built.emplace_back(e.evaluation_rank, e.build(ctx));
+      ctx.built.push_back(built.back().second.get());
+      on.push_back(&e);
+    }
+  for (const ModuleEntry* e : on)
+    if (e->finish) e->finish(ctx);
+  std::stable_sort(built.begin(), built.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::unique_ptr<PhysicsModule>> modules;
+  for (auto& [rank, m] : built) modules.push_back(std::move(m));
+  return modules;
+}
+
+}  // namespace panoptic

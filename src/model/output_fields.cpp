@@ -1,0 +1,103 @@
+#include <cmath>
+#include <string>
+
+#include "disk/gas_disk.hpp"
+#include "physics/stokes_model.hpp"
+#include "src/core/units.hpp"
+#include "src/io/run_output.hpp"
+#include "src/model/simulation.hpp"
+
+namespace panoptic {
+
+using units::kAu;
+
+std::vector<OutputField> Simulation::make_output_fields() const {
+  const int n = grid_.n_cells();
+  const std::size_t cells = static_cast<std::size_t>(n), n_mon = monitors_.size();
+  std::vector<OutputField> fields;
+  // the modules' own, in the order they were built (module_registry.cpp)
+  for (const PhysicsModule* m : modules_in_build_order_)
+    for (OutputField& f : m->output_fields()) fields.push_back(std::move(f));
+  // then the model's: the gas column, the Stokes model, the budget and the monitors
+  fields.push_back({"sigma_g", cells, "g cm^-2", "gas surface density",
+                    [this, n](std::span<const double> y) {
+                      std::vector<double> sg(n);
+                      for (int i = 0; i < n; ++i)
+                        sg[i] = gas_.sigma(i, &y[layout_->index(i, 0)]);
+                      return sg;
+                    }});
+  fields.push_back({"St", cells, "", "Stokes number of the dust",
+                    [this, n](std::span<const double> y) {
+                      std::vector<double> st(n);
+                      for (int i = 0; i < n; ++i)
+                        st[i] = stokes_->St(i, &y[layout_->index(i, 0)]);
+                      return st;
+                    }});
+  for (const BudgetTerm& term : budget_terms_)
+    if (term.in_snapshots)
+      fields.push_back({term.name, 0, "g", term.description,
+                        [mass = term.mass](std::span<const double> y) {
+                          return std::vector<double>{mass(y)};
+                        }});
+  fields.push_back({"m_through", n_mon, "g",
+                    "cumulative dust mass that crossed each /pebbles/r_au inward",
+                    [this](std::span<const double> y) { return pebble_mass(y); }});
+  fields.push_back({"pebble_flux", n_mon, "g s^-1",
+                    "inward dust mass flow through each /pebbles/r_au",
+                    [this](std::span<const double> y) { return pebble_flux(y); }});
+  return fields;
+}
+
+void Simulation::prepare_output(RunOutput& out) const {
+  const int n = grid_.n_cells();
+  std::vector<double> r_c(n), r_f(n + 1), T(n), cs(n), om(n), hg(n), alpha(n);
+  for (int i = 0; i <= n; ++i) r_f[i] = grid_.r_f(i) / kAu;
+  for (int i = 0; i < n; ++i) {
+    const double r = grid_.r_c(i);
+    r_c[i] = r / kAu;
+    T[i] = disk_->temperature(r);
+    cs[i] = disk_->c_s(r);
+    om[i] = disk_->omega_k(r);
+    hg[i] = disk_->h_g(r);
+    alpha[i] = disk_->alpha();
+  }
+  out.write_static("grid", "r_c", r_c, "au",
+                   "cell centres (geometric mean of the faces)");
+  out.write_static("grid", "r_f", r_f, "au",
+                   "cell faces (log-spaced, or stretched by grid.stretch)");
+  out.write_static("grid", "area", grid_.areas(), "cm^2", "annulus area of each cell");
+  out.write_static("disk", "T", T, "K", "midplane temperature");
+  out.write_static("disk", "c_s", cs, "cm s^-1", "isothermal sound speed");
+  out.write_static("disk", "omega_k", om, "s^-1", "Keplerian angular frequency");
+  out.write_static("disk", "h_g", hg, "cm", "gas pressure scale height");
+  out.write_static("disk", "alpha", alpha, "", "turbulence parameter");
+  out.write_static("disk", "eta", eta_centres(*disk_, grid_, gas_.static_sigma), "",
+                   "pressure-gradient parameter of the initial gas (spec §1.4)");
+  out.set_group_attr("disk", "r_snow_au", disk_->r_snow() / kAu);
+  for (const OutputField& f : output_fields_)
+    out.add_field(f.name, f.width, f.units, f.description);
+  {
+    std::string names;
+    for (const auto& term : budget_terms_)
+      if (term.in_snapshots) names += (names.empty() ? "" : ";") + term.name;
+    out.set_group_attr_string("snapshots", "budget_terms", names);
+  }
+  std::vector<double> r_mon;
+  std::string names;
+  for (const auto& mon : monitors_) {
+    r_mon.push_back(mon.r_au);
+    names += (names.empty() ? "" : ";") + mon.name;
+  }
+  out.write_static("pebbles", "r_au", r_mon, "au",
+                   "radii (faces) where the pebble flux is recorded; attribute names");
+  out.set_group_attr_string("pebbles", "names", names);
+}
+
+std::map<std::string, std::vector<double>> Simulation::snapshot_fields(
+    std::span<const double> y) const {
+  std::map<std::string, std::vector<double>> values;
+  for (const OutputField& f : output_fields_) values[f.name] = f.fill(y);
+  return values;
+}
+
+}  // namespace panoptic

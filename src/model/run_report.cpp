@@ -1,0 +1,122 @@
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "disk/gas_disk.hpp"
+#include "physics/contact_mechanics.hpp"
+#include "physics/modules/dust_transport.hpp"
+#include "physics/modules/porous_growth.hpp"
+#include "physics/stokes_model.hpp"
+#include "src/core/units.hpp"
+#include "src/model/scene_to_physics.hpp"
+#include "src/model/simulation.hpp"
+
+namespace panoptic {
+
+using units::kAu;
+
+std::string Simulation::summary() const {
+  std::ostringstream s;
+  const auto& L = *layout_;
+  const int n = grid_.n_cells();
+  s << "grid: " << n << " cells, " << grid_.r_f(0) / kAu << " - " << grid_.r_f(n) / kAu
+    << " au (dr/r = ";
+  if (grid_.stretch() == 0.0)
+    s << std::expm1(grid_.dlnr(0)) << ")\n";
+  else
+    s << std::expm1(grid_.dlnr(0)) << " at r_in to " << std::expm1(grid_.dlnr(n - 1))
+      << " at r_out, stretch " << grid_.stretch() << ")\n";
+  s << "gas disk: " << disk_->name()
+    << (gas_.evolves() ? ", viscously evolving" : ", static") << ", ";
+  {  // the profile's gas on the grid's span (spec §1.2; for LBP, its share of M_disk)
+    const double m_gas = disk_->mass_between(grid_.r_f(0), grid_.r_f(n));
+    s << m_gas / units::kMsun << " M_sun between r_in and r_out";
+    if (cfg_.str("disk.model") == "lbp")
+      s << " (" << 100.0 * m_gas / (cfg_.real("disk.m_disk_msun") * units::kMsun)
+        << " % of disk.m_disk_msun)";
+    s << "; ";
+  }
+  const double r_snow_au = disk_->r_snow() / kAu;
+  if (!cfg_.flag("snowline.enabled"))
+    s << "snow line off (icy solids everywhere)\n";
+  else if (std::isinf(r_snow_au))
+    s << "no snow line: warmer than disk.T_sub everywhere (all silicate)\n";
+  else if (r_snow_au == 0.0)
+    s << "no snow line: colder than disk.T_sub everywhere (all ice)\n";
+  else {
+    // where T = T_sub may lie off the grid (a warm disk with q > 0: 3.5e5 au was printed
+    // as if it were a snow line of the run)
+    s << "snow line at " << r_snow_au << " au";
+    if (r_snow_au * kAu >= grid_.r_f(n))
+      s << " (beyond the outer edge: all silicate on the grid)";
+    else if (r_snow_au * kAu <= grid_.r_f(0))
+      s << " (inside the inner edge: all ice on the grid)";
+    s << "\n";
+  }
+  s << "state: " << L.size() << " variables; per cell:";
+  for (int k = 0; k < L.n_cell_vars(); ++k) s << " " << L.cell_var(k).name;
+  s << "; global:";
+  for (int k = 0; k < L.n_global_vars(); ++k) s << " " << L.global_var(k).name;
+  s << "\nmodules:";
+  for (const auto& m : model_->modules()) s << " " << m->name();
+  s << "\nJacobian: " << model_->pattern().nnz() << " structural non-zeros\n";
+  s << "initial dust mass: " << dust_mass0_ / units::kMearth << " M_earth";
+  // the cells' centre values against the profile's exact mass: second order in the width
+  if (std::isfinite(profile_dust_mass_)) {
+    const double excess = dust_mass0_ / profile_dust_mass_ - 1.0;
+    std::ostringstream pct;
+    pct << std::showpos << std::setprecision(2) << 100.0 * excess << " %";
+    s << " (cell-centre values; the profile holds " << profile_dust_mass_ / units::kMearth
+      << " on the grid's span: " << pct.str() << ")";
+    if (std::abs(excess) > 0.01)
+      s << "\nWARNING: the cells misstate the initial dust mass by " << pct.str()
+        << " (cell-centre values of the profile); raise grid.n_cells";
+  }
+  s << "\n";
+  // log-spaced snapshots between equal ends fall on one time (a quick run shortened
+  // with output.t_end_yr = t_first_yr): said, not refused
+  if (cfg_.reals("output.times_yr").empty() && cfg_.integer("output.n_snapshots") > 1 &&
+      cfg_.real("output.t_first_yr") == cfg_.real("output.t_end_yr"))
+    s << "WARNING: output.n_snapshots = " << cfg_.integer("output.n_snapshots")
+      << " with output.t_first_yr = t_end_yr = " << cfg_.real("output.t_end_yr")
+      << " yr: one snapshot after t = 0; lower t_first_yr for more\n";
+  if (growth_) {  // spec §0: the contact mechanics behind the collision parameters
+    s << physics::contact_summary("ice", material_from_config(cfg_, "ice")) << "\n";
+    s << physics::contact_summary("silicate", material_from_config(cfg_, "sil")) << "\n";
+    // spec §5.3 has bouncing at every speed for phi >= phi_bounce, and monomers start at
+    // phi = 1 (README, "What works").
+    if (cfg_.flag("bouncing.enabled"))
+      s << "WARNING: bouncing.enabled: particles with phi >= bouncing.phi_bounce = "
+        << cfg_.real("bouncing.phi_bounce")
+        << " do not stick at any speed (spec §5.3 has no speed or mass threshold): "
+        << (cfg_.flag("porosity.enabled")
+                ? "the monomers (phi = 1) grow only once hit-and-stick has lowered phi "
+                  "below it, and then never bounce"
+                : "with porosity off nothing grows")
+        << "\n";
+    // refresh_local_gas runs where CVODE restarts (README, "What works")
+    if (gas_.evolves() && !cfg_.flag("solver.reinit_at_snapshots"))
+      s << "WARNING: gas.evolve with solver.reinit_at_snapshots = false: the pressure "
+           "gradient (eta) and gas velocity that the particle laws see are set once, at "
+           "the start, and not from the evolving gas at every snapshot; set "
+           "solver.reinit_at_snapshots = true to follow the gas\n";
+  }
+  return s.str();
+}
+
+std::string Simulation::describe_state(long index, std::span<const double> y) const {
+  const auto& L = *layout_;
+  const int i = L.cell_of(index);
+  if (i < 0 || y.size() < static_cast<std::size_t>(L.size())) return "";
+  const double* yc = &y[L.index(i, 0)];
+  std::ostringstream s;
+  s.precision(4);
+  s << "r = " << grid_.r_c(i) / kAu << " au, Sigma_d = " << yc[transport_->sigma_slot()]
+    << " g cm^-2";
+  if (gas_.evolves()) s << ", Sigma_g = " << gas_.sigma(i, yc) << " g cm^-2";
+  if (growth_) s << ", m = " << codec_->mass(i, yc) << " g, phi = " << codec_->phi(yc);
+  s << ", St = " << stokes_->St(i, yc);
+  return s.str();
+}
+
+}  // namespace panoptic
