@@ -30,6 +30,7 @@
 #include "src/io/checkpoint.hpp"
 #include "src/io/durable_file.hpp"
 #include "src/io/run_output.hpp"
+#include "src/model/output_table.hpp"
 #include "src/model/simulation.hpp"
 #include "src/model/track.hpp"
 #include "src/observe/observe.hpp"
@@ -616,6 +617,10 @@ int run_command_line(int argc, char** argv) {
   auto* ref_cmd = app.add_subcommand(
       "reference",
       "print every scene key with its default and unit (params/reference.toml)");
+  bool outputs = false;
+  ref_cmd->add_flag("--outputs", outputs,
+                    "print the table of every snapshot field (Markdown: field, units, "
+                    "description), from the fields the modules declare");
 
   ScanOptions scan_opts;
   auto* scan_cmd = app.add_subcommand(
@@ -687,6 +692,13 @@ int run_command_line(int argc, char** argv) {
       }
       obs.a_cm_given = obs_cmd->count("--a-cm") > 0;
       return observe(obs);
+    }
+    if (*ref_cmd && outputs) {  // every module on, so every field is declared
+      const Simulation every(every_process_scene());
+      std::vector<OutputField> fields = every.output_fields();
+      for (OutputField& f : RunDiagnostics::output_fields(every)) fields.push_back(f);
+      std::fputs(output_table_markdown(fields).c_str(), stdout);
+      return 0;
     }
     if (*ref_cmd) {
       std::fputs(reference_toml().c_str(), stdout);
