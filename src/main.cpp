@@ -697,7 +697,7 @@ int run_command_line(int argc, char** argv) {
       const Simulation every(every_process_scene());
       std::vector<OutputField> fields = every.output_fields();
       for (OutputField& f : RunDiagnostics::output_fields(every)) fields.push_back(f);
-      std::fputs(output_table_markdown(fields).c_str(), stdout);
+      std::fputs(output_table_markdown(every.static_fields(), fields).c_str(), stdout);
       return 0;
     }
     if (*ref_cmd) {

@@ -48,7 +48,7 @@ std::vector<OutputField> Simulation::make_output_fields() const {
   return fields;
 }
 
-void Simulation::prepare_output(RunOutput& out) const {
+std::vector<StaticField> Simulation::static_fields() const {
   const int n = grid_.n_cells();
   std::vector<double> r_c(n), r_f(n + 1), T(n), cs(n), om(n), hg(n), alpha(n);
   for (int i = 0; i <= n; ++i) r_f[i] = grid_.r_f(i) / kAu;
@@ -61,36 +61,36 @@ void Simulation::prepare_output(RunOutput& out) const {
     hg[i] = disk_->h_g(r);
     alpha[i] = disk_->alpha();
   }
-  out.write_static("grid", "r_c", r_c, "au",
-                   "cell centres (geometric mean of the faces)");
-  out.write_static("grid", "r_f", r_f, "au",
-                   "cell faces (log-spaced, or stretched by grid.stretch)");
-  out.write_static("grid", "area", grid_.areas(), "cm^2", "annulus area of each cell");
-  out.write_static("disk", "T", T, "K", "midplane temperature");
-  out.write_static("disk", "c_s", cs, "cm s^-1", "isothermal sound speed");
-  out.write_static("disk", "omega_k", om, "s^-1", "Keplerian angular frequency");
-  out.write_static("disk", "h_g", hg, "cm", "gas pressure scale height");
-  out.write_static("disk", "alpha", alpha, "", "turbulence parameter");
-  out.write_static("disk", "eta", eta_centres(*disk_, grid_, gas_.static_sigma), "",
-                   "pressure-gradient parameter of the initial gas (spec §1.4)");
+  std::vector<double> r_mon;
+  for (const auto& mon : monitors_) r_mon.push_back(mon.r_au);
+  return {
+      {"grid", "r_c", r_c, "au", "cell centres (geometric mean of the faces)"},
+      {"grid", "r_f", r_f, "au", "cell faces (log-spaced, or stretched by grid.stretch)"},
+      {"grid", "area", grid_.areas(), "cm^2", "annulus area of each cell"},
+      {"disk", "T", T, "K", "midplane temperature"},
+      {"disk", "c_s", cs, "cm s^-1", "isothermal sound speed"},
+      {"disk", "omega_k", om, "s^-1", "Keplerian angular frequency"},
+      {"disk", "h_g", hg, "cm", "gas pressure scale height"},
+      {"disk", "alpha", alpha, "", "turbulence parameter"},
+      {"disk", "eta", eta_centres(*disk_, grid_, gas_.static_sigma), "",
+       "pressure-gradient parameter of the initial gas (spec §1.4)"},
+      {"pebbles", "r_au", r_mon, "au",
+       "radii (faces) where the pebble flux is recorded; attribute names"}};
+}
+
+void Simulation::prepare_output(RunOutput& out) const {
+  for (const StaticField& f : static_fields())
+    out.write_static(f.group, f.name, f.values, f.units, f.description);
   out.set_group_attr("disk", "r_snow_au", disk_->r_snow() / kAu);
+  std::string monitors;
+  for (const auto& mon : monitors_) monitors += (monitors.empty() ? "" : ";") + mon.name;
+  out.set_group_attr_string("pebbles", "names", monitors);
   for (const OutputField& f : output_fields_)
     out.add_field(f.name, f.width, f.units, f.description);
-  {
-    std::string names;
-    for (const auto& term : budget_terms_)
-      if (term.in_snapshots) names += (names.empty() ? "" : ";") + term.name;
-    out.set_group_attr_string("snapshots", "budget_terms", names);
-  }
-  std::vector<double> r_mon;
-  std::string names;
-  for (const auto& mon : monitors_) {
-    r_mon.push_back(mon.r_au);
-    names += (names.empty() ? "" : ";") + mon.name;
-  }
-  out.write_static("pebbles", "r_au", r_mon, "au",
-                   "radii (faces) where the pebble flux is recorded; attribute names");
-  out.set_group_attr_string("pebbles", "names", names);
+  std::string terms;
+  for (const auto& term : budget_terms_)
+    if (term.in_snapshots) terms += (terms.empty() ? "" : ";") + term.name;
+  out.set_group_attr_string("snapshots", "budget_terms", terms);
 }
 
 std::map<std::string, std::vector<double>> Simulation::snapshot_fields(

@@ -22,10 +22,14 @@ Config every_process_scene() {
   return load_scene_text("", "every process", on);
 }
 
-std::string output_table_markdown(std::span<const OutputField> fields) {
+std::string output_table_markdown(std::span<const StaticField> static_fields,
+                                  std::span<const OutputField> fields) {
   std::ostringstream s;
   s << "| group/field | units | description |\n";
   s << "|---|---|---|\n";
+  for (const StaticField& f : static_fields)
+    s << "| " << f.group << "/" << f.name << " | " << (f.units.empty() ? "-" : f.units)
+      << " | " << escaped(f.description) << " |\n";
   for (const OutputField& f : fields)
     s << "| snapshots/" << f.name << " | " << (f.units.empty() ? "-" : f.units) << " | "
       << escaped(f.description) << " |\n";

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/physics_module.hpp"
 
@@ -16,8 +17,9 @@ namespace panoptic {
 //! is.
 Config every_process_scene();
 
-//! A Markdown table with one row per field: `snapshots/<name>`, units ("-" for a pure
-//! number), description.
-std::string output_table_markdown(std::span<const OutputField> fields);
+//! A Markdown table with one row per field, the static ones first: `<group>/<name>`,
+//! units ("-" for a pure number), description.
+std::string output_table_markdown(std::span<const StaticField> static_fields,
+                                  std::span<const OutputField> fields);
 
 }  // namespace panoptic

@@ -40,6 +40,14 @@ struct GrowthOptions;
 
 // BudgetTerm: src/solver/physics_module.hpp (a module declares its own).
 
+//! A dataset written once, at the start (/grid, /disk, /pebbles), with its units and
+//! description attributes.
+struct StaticField {
+  std::string group, name;
+  std::vector<double> values;
+  std::string units, description;
+};
+
 class Simulation {
  public:
   explicit Simulation(const Config& cfg);
@@ -71,7 +79,9 @@ class Simulation {
   //! order they were built, then the model's (Sigma_g, St, the budget terms, the pebble
   //! flux).
   const std::vector<OutputField>& output_fields() const { return output_fields_; }
-  //! Writes /grid, /disk, /pebbles and declares the snapshot fields (output_fields()).
+  //! /grid, /disk and /pebbles: written once, by prepare_output.
+  std::vector<StaticField> static_fields() const;
+  //! Writes the static fields and declares the snapshot fields (output_fields()).
   void prepare_output(RunOutput& out) const;
   //! Every snapshot field at state y (as declared in output_fields()).
   std::map<std::string, std::vector<double>> snapshot_fields(
