@@ -191,6 +191,59 @@ TEST(CoagulationEngine, VolumeMeasureConservedBySplitAndFragments) {
   EXPECT_LT(imbalance(eng, f, sigma, psi).second, 1e-14);
 }
 
+TEST(CoagulationEngine, OutcomesOfOnePairAreDustPys) {
+  // one pair at a time (all other bins empty), p = 1: DustPy's outcome model
+  const Smoluchowski eng(MassGrid(1.0, 1e8, 7.0));
+  const int n = eng.size();
+  const auto& m = eng.grid().m;
+  EXPECT_EQ(eng.crater_bins(), 7);  // mass ratio 10 at 7 bins per decade
+  CellCoefficients c;
+  c.p_frag.assign(static_cast<std::size_t>(n) * n, 1.0);
+  // K = 1 for the pair (a, b) only (no self-collisions)
+  auto only_pair = [&](int a, int b) {
+    c.kernel.assign(static_cast<std::size_t>(n) * n, 0.0);
+    c.kernel[static_cast<std::size_t>(a) * n + b] = 1.0;
+    c.kernel[static_cast<std::size_t>(b) * n + a] = 1.0;
+  };
+  std::vector<double> sigma(n, 0.0), ds(n);
+  // cratering: target bin 40, projectile bin 20 (ratio 1e20/7): R = n_i n_j = 1
+  const int i = 40, j = 20;
+  only_pair(i, j);
+  sigma[i] = m[i];
+  sigma[j] = m[j];
+  eng.rhs(c, sigma, {}, ds, {});
+  // the target loses eps_c m_j = m_j (remnant split between bins i-1 and i)
+  EXPECT_NEAR(ds[i] + ds[i - 1], -m[j], 1e-12 * m[j]);
+  EXPECT_LT(ds[i], 0.0);
+  EXPECT_GT(ds[i - 1], 0.0);
+  // the projectile's bin loses m_j and fragments of 2 m_j spread over bins <= j as
+  // m^(1/6) (n ∝ m^-11/6)
+  double frag = 0.0;
+  for (int k = 0; k <= j; ++k) frag += ds[k];
+  EXPECT_NEAR(frag, -m[j] + 2.0 * m[j], 1e-12 * m[j]);
+  EXPECT_NEAR(ds[5] / ds[4], std::pow(m[5] / m[4], 1.0 / 6.0), 1e-12);
+  for (int k = j + 1; k < i - 1; ++k) EXPECT_EQ(ds[k], 0.0);
+  // full fragmentation of bins 30 and 25: all of m_30 + m_25 into bins <= 30
+  std::fill(sigma.begin(), sigma.end(), 0.0);
+  sigma[30] = m[30];
+  sigma[25] = m[25];
+  only_pair(30, 25);
+  eng.rhs(c, sigma, {}, ds, {});
+  double total = 0.0;
+  for (int k = 0; k < n; ++k) total += ds[k];
+  EXPECT_NEAR(total, 0.0, 1e-13 * m[30]);
+  for (int k = 31; k < n; ++k) EXPECT_EQ(ds[k], 0.0);
+  EXPECT_NEAR((ds[10] / ds[3]), std::pow(m[10] / m[3], 1.0 / 6.0), 1e-12);
+  // sticking (p = 0) of bins 30 and 25: number and mass conserved, product in 30, 31
+  std::fill(c.p_frag.begin(), c.p_frag.end(), 0.0);
+  eng.rhs(c, sigma, {}, ds, {});
+  double num = 0.0;
+  for (int k = 0; k < n; ++k) num += ds[k] / m[k];
+  EXPECT_NEAR(num, -1.0, 1e-13);  // two particles become one at rate R = 1
+  EXPECT_NEAR(ds[30] + ds[31], m[25], 1e-12 * m[30]);
+  EXPECT_NEAR(ds[25], -m[25], 1e-12 * m[25]);
+}
+
 TEST(CoagulationPorosity, EqualMassLimitsAreTheSpecSlopes) {
   // spec §4.3: hit-and-stick V_{1+2} = 2.99 V_1 -> d ln phi / d ln m = 1 - log2(2.99)
   const double m = 1e-10, u = 37.0;
