@@ -72,6 +72,7 @@ inline double compression_slope_of_target(double a, double St, const LocalGas& g
 inline double product_ln_u_ratio(double m_i, double u_i, double m_j, double u_j,
                                  double e_imp, double e_threshold, double s_c) {
   const double w = log_step(e_imp, e_threshold, 0.1);
+  if (w == 1.0) return ln_u_ratio_compression(m_i, u_i, m_j, u_j, s_c);
   const double hs = ln_u_ratio_hit_and_stick(m_i, u_i, m_j, u_j);
   if (w == 0.0) return hs;
   return (1.0 - w) * hs + w * ln_u_ratio_compression(m_i, u_i, m_j, u_j, s_c);

@@ -38,10 +38,11 @@
 //! per pair as d_ij = ln(u_p / u_i) (physics/coagulation/porosity.hpp), and a relaxation
 //! up to the static compaction floor per bin (spec §4.3-§4.4, §15.3) may be added.
 //!
-//! The Jacobian is analytic and dense per cell, with K, p, d and the floors held fixed
-//! (they depend on the state only through the filling factors). For the compact model it
-//! is exact. Rows and columns are ordered (sigma_0 ... sigma_{N-1}[, psi_0 ...]),
-//! row-major.
+//! The Jacobian is analytic and dense per cell, with p, d and the floors held fixed
+//! (they depend on the state only through the filling factors) unless their
+//! derivatives by ln u_i are given (cell_coefficients computes those of K, p and d).
+//! For the compact model it is exact. Rows and columns are ordered (sigma_0 ...
+//! sigma_{N-1}[, psi_0 ...]), row-major.
 #include <algorithm>
 #include <cmath>
 #include <span>
@@ -74,6 +75,14 @@ struct CellCoefficients {
   std::vector<double> ln_u_ratio;  //!< porous: ln(u_p / u_i) of the product [-]; empty: 0
   std::vector<double> ln_phi_floor;  //!< porous, per bin: ln of the compaction floor
   std::vector<double> relax_rate;    //!< porous, per bin: 1 / t_relax [s^-1]
+  //! porous, Jacobian only: d ln K_ij / d ln u_i at (i, j) (for i = j the derivative of
+  //! K_ii by its bin's u); empty: K held fixed [-]
+  std::vector<double> dlnk_dlnu;
+  //! porous, Jacobian only: d p_ij / d ln u_i at (i, j) (as dlnk_dlnu) [-]
+  std::vector<double> dp_dlnu;
+  //! porous, Jacobian only: d d_ij / d ln u_i and d d_ij / d ln u_j at (i, j), i >= j
+  //! (for i = j the first holds the derivative by the bin's u, the second 0) [-]
+  std::vector<double> dd_dlnu_i, dd_dlnu_j;
 };
 
 //! Softplus sharpness of the push up to the floor (as physics/compaction.hpp) [-].
@@ -258,6 +267,7 @@ class Smoluchowski {
     const int nv = porous ? 2 * n : n;
     const bool frag = !c.p_frag.empty();
     const bool has_d = porous && !c.ln_u_ratio.empty();
+    const bool has_dk = porous && !c.dlnk_dlnu.empty();
     std::fill(jac.begin(), jac.end(), 0.0);
     num_.resize(n);
     for (int k = 0; k < n; ++k) num_[k] = sigma[k] / m[k];
@@ -274,16 +284,52 @@ class Smoluchowski {
         const std::size_t ij = static_cast<std::size_t>(i) * n + j;
         const double kk = (i == j ? 0.5 : 1.0) * c.kernel[ij];
         const double pf = frag ? c.p_frag[ij] : 0.0;
+        // K_ij through u_i = psi_i/sigma_i and u_j: a term T ∝ K adds g_i T (d ln u_i /
+        // d psi_i = 1/psi_i, d ln u_i / d sigma_i = -1/sigma_i), and the same for j (once
+        // for i = j); written with T/sigma_i and u_i, which stay finite in nearly empty
+        // bins
+        double gk_i = 0.0, gk_j = 0.0, gp_i = 0.0, gp_j = 0.0, gd_i = 0.0, gd_j = 0.0;
+        double ui = 1.0, uj = 1.0;
+        if (has_dk && sigma[i] > 0.0 && psi[i] > 0.0 && sigma[j] > 0.0 && psi[j] > 0.0) {
+          const std::size_t ji = static_cast<std::size_t>(j) * n + i;
+          gk_i = c.dlnk_dlnu[ij];
+          if (i != j) gk_j = c.dlnk_dlnu[ji];
+          if (frag && !c.dp_dlnu.empty()) {
+            gp_i = c.dp_dlnu[ij];
+            if (i != j) gp_j = c.dp_dlnu[ji];
+          }
+          if (!c.dd_dlnu_i.empty()) {
+            gd_i = c.dd_dlnu_i[ij];
+            gd_j = c.dd_dlnu_j[ij];
+          }
+          ui = psi[i] / sigma[i];
+          uj = psi[j] / sigma[j];
+        }
+        double gi = 0.0, gj = 0.0;  // d ln T / d ln u of the current terms
+        // t_si = T / sigma_i, t_sj = T / sigma_j
+        auto kernel_terms = [&](int row, double t_si, double t_sj) {
+          at(row, n + i) += gi * t_si / ui;
+          at(row, i) -= gi * t_si;
+          at(row, n + j) += gj * t_sj / uj;
+          at(row, j) -= gj * t_sj;
+        };
         for (int outcome = 0; outcome < 2; ++outcome) {
           const double f = outcome == 0 ? 1.0 - pf : pf;
           if (f == 0.0) continue;
           if (outcome == 0 && p.k < 0) continue;
+          // T ∝ f K: d ln T / d ln u = d ln K / d ln u -+ (dp / d ln u) / f
+          if (has_dk) {
+            const double sign = outcome == 0 ? -1.0 : 1.0;
+            gi = gk_i + sign * gp_i / f;
+            gj = gk_j + sign * gp_j / f;
+          }
           // R = f kk n_i n_j: dR/dsigma_i, dR/dsigma_j
           const double dri = f * kk * num_[j] / m[i];
           const double drj = f * kk * num_[i] / m[j];
           auto mass = [&](int row, double coef) {
             at(row, i) += coef * dri;
             at(row, j) += coef * drj;
+            if (has_dk) kernel_terms(row, coef * dri, coef * drj);
           };
           // u_t = psi_i f kk n_j / m_i and u_j = psi_j f kk n_i / m_j
           const double dut_dpsi = f * kk * num_[j] / m[i];
@@ -293,10 +339,12 @@ class Smoluchowski {
           auto vol_t = [&](int row, double coef) {
             at(n + row, n + i) += coef * dut_dpsi;
             at(n + row, j) += coef * dut_dsj;
+            if (has_dk) kernel_terms(n + row, coef * ui * dut_dpsi, coef * dut_dsj);
           };
           auto vol_j = [&](int row, double coef) {
             at(n + row, n + j) += coef * duj_dpsi;
             at(n + row, i) += coef * duj_dsi;
+            if (has_dk) kernel_terms(n + row, coef * duj_dsi, coef * uj * duj_dpsi);
           };
           if (outcome == 0) {
             mass(j, -m[j]);
@@ -314,6 +362,14 @@ class Smoluchowski {
                 vol_t(p.k, p.gain_lo * ed);
               }
               vol_t(p.k + 1, p.gain_hi * ed);
+              if (has_dk && (gd_i != 0.0 || gd_j != 0.0)) {
+                // the product's volume gain[k] e^d U_t through d(u_i, u_j)
+                gi = gd_i;
+                gj = gd_j;
+                const double t_si = ui * dut_dpsi, t_sj = dut_dsj;
+                kernel_terms(n + p.k, p.gain_lo * ed * t_si, p.gain_lo * ed * t_sj);
+                kernel_terms(n + p.k + 1, p.gain_hi * ed * t_si, p.gain_hi * ed * t_sj);
+              }
             }
             continue;
           }
@@ -326,8 +382,17 @@ class Smoluchowski {
             mass(i, -m[i]);
           }
           const std::size_t q = p.frag_bin;
-          g_mass_[static_cast<std::size_t>(i) * n + q] += p.frag_mass * dri;
-          g_mass_[static_cast<std::size_t>(j) * n + q] += p.frag_mass * drj;
+          auto gm = [&](int col) -> double& {
+            return g_mass_[static_cast<std::size_t>(col) * n + q];
+          };
+          gm(i) += p.frag_mass * dri;
+          gm(j) += p.frag_mass * drj;
+          if (has_dk) {
+            gm(n + i) += gi * p.frag_mass * dri / ui;
+            gm(i) -= gi * p.frag_mass * dri;
+            gm(n + j) += gj * p.frag_mass * drj / uj;
+            gm(j) -= gj * p.frag_mass * drj;
+          }
           if (porous) {
             vol_j(j, -m[j]);
             // fragments' volume: m_j u_j + (crater ? x : m_i) u_t
@@ -346,6 +411,14 @@ class Smoluchowski {
             g(j) += ct * dut_dsj;
             g(n + j) += m[j] * duj_dpsi;
             g(i) += m[j] * duj_dsi;
+            if (has_dk) {
+              const double t_si = ct * ui * dut_dpsi + m[j] * duj_dsi;
+              const double t_sj = ct * dut_dsj + m[j] * uj * duj_dpsi;
+              g(n + i) += gi * t_si / ui;
+              g(i) -= gi * t_si;
+              g(n + j) += gj * t_sj / uj;
+              g(j) -= gj * t_sj;
+            }
           }
         }
       }

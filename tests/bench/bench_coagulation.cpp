@@ -1,9 +1,10 @@
 //! Cost of the one-cell coagulation engine (physics/coagulation, spec §15) at DustPy's
 //! resolution, 120 bins (1e-12 ... 1e5 g, 7 per decade), compact and porous: one
 //! right-hand side, one dense analytic Jacobian, one rebuild of the cell's coefficients
-//! (kernel, pair speeds, fragmentation probabilities, product porosity, floors) and one
-//! dense LU of the Newton matrix, to plan the disk-wide solver of issue 35 (100 cells x
-//! 120 bins x 2). Results: tests/bench/results/coagulation_cell.md.
+//! (kernel, pair speeds, fragmentation probabilities, product porosity, floors; for the
+//! porous Jacobian also their derivatives by the porosity) and one dense LU of the Newton
+//! matrix, to plan the disk-wide solver of issue 35 (100 cells x 120 bins x 2). Results:
+//! tests/bench/results/coagulation_cell.md.
 //!   build/tests/bench_coagulation [repeats]
 #include <Eigen/Dense>
 #include <algorithm>
@@ -66,14 +67,15 @@ int main(int argc, char** argv) {
       "| cell | bins | unknowns | coefficients [us] | RHS [us] | Jacobian [us] | dense "
       "LU [us] |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
-  for (const bool porous : {false, true}) {
+  for (const int variant : {0, 1, 2}) {  // compact, porous, porous + derivatives
+    const bool porous = variant > 0, derivatives = variant == 2;
     const std::span<const double> p =
         porous ? std::span<const double>(psi) : std::span<const double>();
     const int nv = porous ? 2 * n : n;
-    CellCoefficients c = cell_coefficients(eng, sigma, p, gas, model);
+    CellCoefficients c = cell_coefficients(eng, sigma, p, gas, model, derivatives);
     std::vector<double> ds(n), dp(porous ? n : 0), jac(static_cast<std::size_t>(nv) * nv);
     const double t_coef = time_it(std::max(3, repeats / 10), [&] {
-      c = cell_coefficients(eng, sigma, p, gas, model);
+      c = cell_coefficients(eng, sigma, p, gas, model, derivatives);
     });
     const double t_rhs = time_it(repeats, [&] { eng.rhs(c, sigma, p, ds, dp); });
     const double t_jac = time_it(repeats, [&] { eng.jacobian(c, sigma, p, jac); });
@@ -85,8 +87,10 @@ int main(int argc, char** argv) {
     Eigen::PartialPivLU<Eigen::MatrixXd> lu(nv);
     const double t_lu = time_it(repeats, [&] { lu.compute(a); });
     std::printf("| %s | %d | %d | %.0f | %.0f | %.0f | %.0f |\n",
-                porous ? "porous" : "compact", n, nv, 1e6 * t_coef, 1e6 * t_rhs,
-                1e6 * t_jac, 1e6 * t_lu);
+                variant == 0   ? "compact"
+                : variant == 1 ? "porous"
+                               : "porous, d/d ln u",
+                n, nv, 1e6 * t_coef, 1e6 * t_rhs, 1e6 * t_jac, 1e6 * t_lu);
   }
   return 0;
 }

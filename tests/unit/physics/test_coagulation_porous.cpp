@@ -1,7 +1,7 @@
 //! The porous one-cell engine in time (physics/coagulation, spec §15.3): icy monomers on
 //! the MMSN gas at 5 au grow by hit-and-stick (Brownian motion, then turbulence) with
 //! every coefficient rebuilt from the state at each right-hand side, CVODE BDF with the
-//! engine's dense Jacobian (coefficients held at the last right-hand side's). Okuzumi et
+//! engine's dense Jacobian and the coefficients' derivatives by the porosity. Okuzumi et
 //! al. (2012) find fractal aggregates: internal densities far below the monomers'.
 #include <gtest/gtest.h>
 
