@@ -12,6 +12,8 @@
 #include <cstring>
 #include <string>
 
+#include "src/scene/number_text.hpp"
+
 namespace panoptic {
 namespace {
 
@@ -295,10 +297,7 @@ std::string syntax_hint(const std::string& description) {
     const auto begin = description.rfind('\'', end - 1);
     if (begin != std::string::npos) {
       const std::string token = description.substr(begin + 1, end - begin - 1);
-      char* stop = nullptr;
-      errno = 0;
-      (void)std::strtod(token.c_str(), &stop);
-      if (!token.empty() && stop == token.c_str() + token.size() && errno == ERANGE)
+      if (read_number_text(token).beyond_double)
         return " (" + token +
                " is beyond the range of a double, |x| < 1.8e308: give a number in range)";
     }

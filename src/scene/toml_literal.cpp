@@ -76,4 +76,14 @@ std::string toml_value(const ConfigValue& v) {
   return std::visit(Visitor{}, v);
 }
 
+// A comment must stay on its line: control characters would end it or break the file.
+std::string comment_safe(std::string_view s) {
+  std::string out;
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    out += (c < 0x20 || c == 0x7F) ? '?' : ch;
+  }
+  return out;
+}
+
 }  // namespace panoptic

@@ -1,0 +1,32 @@
+// Config::resolved_toml: the scene a run used, every key with its value, stored in every
+// output (the config_toml attribute) and in every checkpoint.
+#include <vector>
+
+#include "src/scene/config.hpp"
+#include "src/scene/schema_lookup.hpp"
+#include "src/scene/toml_literal.hpp"
+#include "src/scene/toml_tables.hpp"
+
+namespace panoptic {
+using namespace scene_detail;
+
+std::string Config::resolved_toml() const {
+  std::vector<KeyLine> lines;
+  for (const KeySpec& spec : scene_keys()) {
+    const auto it = values_.find(spec.key);
+    if (it == values_.end()) continue;
+    std::string comment;
+    if (!spec.unit.empty()) comment += " [" + spec.unit + "]";
+    if (!user_set(spec.key)) comment += " (default)";
+    lines.push_back(
+        KeyLine{spec.key, std::string(leaf_of(spec.key)) + " = " + toml_value(it->second),
+                comment});
+  }
+  constexpr size_t kMaxAlign = 40;  // long values do not push every comment right
+  return "# The resolved scene " + comment_safe(file_.string()) +
+         ": every key, defaults included.\n"
+         "# \"(default)\" marks a key the scene did not set.\n" +
+         tables_text(lines, kMaxAlign, "  #");
+}
+
+}  // namespace panoptic
