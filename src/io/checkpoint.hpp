@@ -13,23 +13,20 @@
 //! is fsynced), so that at every moment of a crash `<stem>.chk.h5` is a whole checkpoint,
 //! the new one or the old one.
 //!
-//! Bit-for-bit continuation rests on two rules (main.cpp): checkpoints are taken only at
-//! snapshot times, and with solver.reinit_at_snapshots every run reinitialises CVODE at
-//! every snapshot time, so CVODE's history (which cannot be saved) is never used across
-//! a snapshot.
+//! Which checkpoint a restart uses and whether a scene may continue it:
+//! src/run/restart.hpp. Bit-for-bit continuation rests on two rules (src/run/run.cpp):
+//! checkpoints are taken only at snapshot times, and with solver.reinit_at_snapshots
+//! every run reinitialises CVODE at every snapshot time, so CVODE's history (which cannot
+//! be saved) is never used across a snapshot.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "src/core/digest.hpp"
-#include "src/io/run_output.hpp"
-#include "src/scene/config.hpp"
-#include "src/solver/cvode_integrator.hpp"
-#include "src/solver/state_layout.hpp"
+#include "src/solver/solver_stats.hpp"
 
 namespace panoptic {
 
@@ -75,71 +72,5 @@ bool is_checkpoint_file(const std::filesystem::path& path);
 //! Reads and verifies a checkpoint: throws IoError saying what is wrong (missing,
 //! truncated or not HDF5, incomplete, checksum mismatch) and naming the file.
 Checkpoint read_checkpoint(const std::filesystem::path& path);
-
-//! A checkpoint to restart from, and which file it came from.
-struct RestartPoint {
-  Checkpoint chk;
-  std::filesystem::path path;  //!< the file actually read
-  std::string fallback_note;   //!< non-empty when the previous checkpoint was used: why
-};
-
-//! Reads `path`; when that fails and a previous checkpoint exists next to it
-//! (`<stem>.chk.prev.h5`), reads that one instead and says why in fallback_note. Throws
-//! IoError naming both files when neither can be used.
-RestartPoint load_restart_point(const std::filesystem::path& path);
-
-//! True for the keys a restart may change: output times and the output file, solver
-//! settings, checkpoint settings, [meta]. Everything else (grid, disk, processes,
-//! initial condition, ...) defines the state being continued.
-bool may_change_on_restart(std::string_view key);
-
-//! Throws ConfigError (exit 2) when `cfg` cannot continue `chk`: names every key whose
-//! value differs from the checkpoint's scene and may not change, with both values, or
-//! the differing layout (StateLayout::signature); says what may change and the fix.
-//! Returns the keys that differ and may, as "key = value (was value)" (for the output's
-//! record of restarts and the run's notice).
-std::vector<std::string> check_compatible(const Checkpoint& chk,
-                                          const std::filesystem::path& chk_path,
-                                          const Config& cfg, const StateLayout& layout);
-
-//! The keys whose values differ between two scenes, in schema order.
-std::vector<std::string> changed_keys(const Config& before, const Config& now);
-
-//! The snapshot times [s] of a run continued at t_restart: t_restart, then the scene's
-//! snapshot times after it. Throws ConfigError naming output.t_end_yr when the scene
-//! ends at or before t_restart.
-std::vector<double> times_after_restart(std::span<const double> output_times,
-                                        double t_restart);
-
-//! The output of the checkpoint's run, reopened to continue it: `output` (-o) when
-//! given, else the file of the recorded name next to the checkpoint, else the recorded
-//! path. Checks, before changing anything, that it is that run's file (run_id, and
-//! the time of the checkpoint's snapshot); then cuts the snapshots written after the
-//! checkpoint, stores the new resolved scene as config_toml and adds a line to the root
-//! attribute `restarts`. IoError naming the file and the fix.
-RunOutput continue_output(const RestartPoint& restart,
-                          const std::filesystem::path& output, const Config& cfg,
-                          const std::vector<std::string>& changed);
-
-//! A wall-clock duration for --max-wall: "90m", "2h", "3600s", "1h30m", "1.5h", or a
-//! plain number of seconds. Throws ConfigError saying what is accepted.
-double parse_duration(std::string_view text);
-
-//! When to checkpoint: at a snapshot, if checkpoint.every_snapshots divides its index,
-//! or if checkpoint.every_wall_s has passed since the last checkpoint (or the start).
-class CheckpointSchedule {
- public:
-  CheckpointSchedule(double every_wall_s, long every_snapshots, double wall_now)
-      : every_wall_s_(every_wall_s),
-        every_snapshots_(every_snapshots),
-        last_wall_(wall_now) {}
-  bool due(long snapshot_index, double wall_now) const;
-  void taken(double wall_now) { last_wall_ = wall_now; }
-
- private:
-  double every_wall_s_;
-  long every_snapshots_;
-  double last_wall_;
-};
 
 }  // namespace panoptic

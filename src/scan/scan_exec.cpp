@@ -22,6 +22,7 @@
 #include "src/io/checkpoint.hpp"
 #include "src/io/durable_file.hpp"
 #include "src/io/h5.hpp"
+#include "src/run/restart.hpp"
 
 namespace panoptic {
 namespace fs = std::filesystem;

@@ -19,8 +19,13 @@
 #include "src/core/error.hpp"
 #include "src/core/units.hpp"
 #include "src/io/checkpoint.hpp"
+#include "src/run/checkpoint_schedule.hpp"
+#include "src/run/max_wall.hpp"
+#include "src/run/restart.hpp"
+#include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
 #include "src/solver/disk_model.hpp"
+#include "src/solver/state_layout.hpp"
 #include "tests/unit/support/config_error.hpp"
 #include "tests/unit/support/robertson.hpp"
 
