@@ -8,6 +8,7 @@
 
 #include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
 #include "src/core/error.hpp"
+#include "src/io/durable_file.hpp"
 #include "src/io/h5.hpp"
 
 namespace fs = std::filesystem;
@@ -171,7 +172,7 @@ void write_contents(hid_t root, const Observation& o) {
 }  // namespace
 
 void write_observation_file(const fs::path& path, const Observation& o) {
-  // written to <path>.tmp, renamed when whole
+  // written to <path>.tmp, closed, then put in place by the one atomic write
   std::error_code ec;
   if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);
   const fs::path tmp = path.string() + ".tmp";
@@ -184,13 +185,7 @@ void write_observation_file(const fs::path& path, const Observation& o) {
     fs::remove(tmp, ec);
     throw;
   }
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    const std::string why = ec.message();  // before remove() sets ec again
-    fs::remove(tmp, ec);
-    throw IoError(path.string() + ": cannot rename the finished file into place (" + why +
-                  ")");
-  }
+  commit_temporary(tmp, path);
 }
 
 }  // namespace panoptic

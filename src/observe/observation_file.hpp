@@ -7,7 +7,8 @@
 
 namespace panoptic {
 
-//! Writes `o` to `path`: whole or not at all. Throws IoError when it cannot.
+//! Writes `o` to `path`, whole or not at all: to <path>.tmp, then fsynced and renamed
+//! into place (commit_temporary). Throws IoError when it cannot.
 void write_observation_file(const std::filesystem::path& path, const Observation& o);
 
 }  // namespace panoptic
