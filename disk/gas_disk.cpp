@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "disk/pressure_gradient.hpp"
 #include "src/core/units.hpp"
 #include "src/solver/grid.hpp"
 
@@ -113,7 +114,7 @@ std::vector<double> eta_centres(const GasDisk& disk, const Grid& grid,
   auto eta = dlnp_dlnr_centres(disk, grid, sigma_g);
   for (int i = 0; i < grid.n_cells(); ++i) {
     const double hr = disk.h_g(grid.r_c(i)) / grid.r_c(i);
-    eta[i] *= -0.5 * hr * hr;
+    eta[i] = pressure_gradient_eta(hr * hr, eta[i]);
   }
   return eta;
 }

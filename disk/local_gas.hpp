@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "disk/gas_defaults.hpp"
+#include "disk/pressure_gradient.hpp"
 #include "src/core/units.hpp"
 
 namespace panoptic::physics {
@@ -89,7 +90,7 @@ inline LocalGas make_local_gas(double sigma_g, double temperature, double r,
   g.mfp = mu * kMassH / (sigma_mol * g.rho_g);         // spec §1.6
   g.nu_mol = 0.5 * g.v_th * g.mfp;                     // spec §1.6
   const double h_over_r = g.h_g / r;
-  g.eta = -0.5 * h_over_r * h_over_r * dlnp_dlnr;  // spec §1.4; Weidenschilling (1977)
+  g.eta = pressure_gradient_eta(h_over_r * h_over_r, dlnp_dlnr);  // spec §1.4
   return g;
 }
 

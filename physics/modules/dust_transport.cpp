@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "disk/gas_disk.hpp"
+#include "disk/pressure_gradient.hpp"
 #include "disk/viscous_gas.hpp"
 #include "src/core/units.hpp"
 #include "src/solver/grid.hpp"
@@ -24,25 +25,23 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
       mass_unit_(dust_mass) {
   // No >= 0 constraint on Sigma_d: CVODE lets a constrained component dip below zero by
   // up to about its error weight and a restart (CvodeIntegrator::reinit) must then clip
-  // it, creating that much dust; with solver.atol_sigma = 1e-8 the LBP test's dust
-  // budget was off by 2.7e-8 (tests/bench/results/performance_log.md). The transport and
-  // the sinks are linear in Sigma_d with non-negative exact solutions, so its negative
-  // excursions are integration error held to the absolute tolerance by the error test.
-  // The decoded m and phi read Sigma_d through the codec's floor
-  // (ParticleCodec::eps_sigma), the SI triggers through a smooth positive part
-  // (Planetesimals::cell_rates); Newton iterates went negative there before, so these
-  // paths were already exercised.
+  // it, creating that much dust, which the dust budget of the LBP test sees
+  // (tests/bench/results/performance_log.md). The transport and the sinks are linear in
+  // Sigma_d with non-negative exact solutions, so its negative excursions are integration
+  // error held to the absolute tolerance by the error test. The decoded m and phi read
+  // Sigma_d through the codec's floor (ParticleCodec::eps_sigma), the SI triggers
+  // through a smooth positive part (Planetesimals::cell_rates), so a negative Sigma_d
+  // (which Newton iterates reach in any case) is safe there.
   slot_ = layout.add_cell_var(
       {"sigma_d", "g cm^-2", "dust surface density", sigma_scale, false});
   const double area_total =
       units::kPi * grid.r_f(grid.n_cells()) * grid.r_f(grid.n_cells());
   // The booked masses (this one, the sublimated ice, the pebble monitors) feed nothing
-  // back, like Sigma_pl, but stay in CVODE's error test: left out, erosion_40 on a
-  // 0.05-10 au grid took 108 295 steps with 46 134 Newton convergence failures instead
-  // of 30 648 and 6 252 (their error holds the step where Newton converges at the inner
-  // edge), and the default fiducial run 6 212 steps instead of 5 941
-  // (tests/bench/results/performance_log.md). They carry no >= 0 constraint: clipping
-  // would lose mass.
+  // back, like Sigma_pl, but stay in CVODE's error test: their error holds the step where
+  // Newton converges at the inner edge; left out, Newton fails to converge there many
+  // times more often and the runs take more steps, several times more on a grid reaching
+  // in to 0.05 au (tests/bench/results/performance_log.md). They carry no >= 0
+  // constraint: clipping would lose mass.
   g_out_ = layout.add_global_var({"m_out_dust", "initial dust mass",
                                   "dust mass that left through r_in, in units of the "
                                   "initial dust mass on the grid",
@@ -67,14 +66,14 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
     dr_[f] = f > 0 ? grid.r_c(f) - grid.r_c(f - 1) : grid.r_c(0) - grid.r_f(0);
     d_gas_[f] = disk.nu(r);  // Schmidt number 1 (spec §1.5)
     hr2vk_[f] = hr * hr * disk.v_k(r);
-    // spec §1.4: eta = -1/2 (H/r)^2 dlnP/dlnr, the gradient from the two neighbouring
-    // centres (at the inner face: the gradient of the first interior face).
+    // eta v_K (spec §1.4), the gradient from the two neighbouring centres (at the inner
+    // face: the gradient of the first interior face).
     const int a = f > 0 ? f - 1 : 0;
     const double dlnp =
         (std::log(gas.static_sigma[a + 1]) - std::log(gas.static_sigma[a]) +
          ln_cs_omega_[a + 1] - ln_cs_omega_[a]) /
         grid.dlnr_centres(a + 1);
-    eta_vk_static_[f] = -0.5 * hr2vk_[f] * dlnp;
+    eta_vk_static_[f] = pressure_gradient_eta(hr2vk_[f], dlnp);
   }
   if (gas.evolves() && viscous == nullptr)
     throw std::logic_error("DustTransport: evolving gas needs the viscous stencil");
@@ -136,7 +135,7 @@ T DustTransport::velocity(int f, const T* ya, const T* yb, const T& st) const {
     const T dlnp = (log(gas_.sigma(a + 1, yb)) - log(gas_.sigma(a, ya)) +
                     (ln_cs_omega_[a + 1] - ln_cs_omega_[a])) /
                    grid_.dlnr_centres(a + 1);
-    eta_vk = -0.5 * hr2vk_[f] * dlnp;
+    eta_vk = pressure_gradient_eta(hr2vk_[f], dlnp);
   } else {
     eta_vk = T(eta_vk_static_[f]);
   }
@@ -156,11 +155,10 @@ int DustTransport::face_flows(int f, const T* ya, const T* yb, std::span<const d
   const int nt = static_cast<int>(transported_.size());
   // Stokes number on the face: geometric mean of the neighbours (exact for power laws on
   // the log-spaced grid, where r_f is the geometric mean of the centres); the inner face
-  // takes the first cell's value. Tried instead (issue 7): each cell's dust leaving at
-  // the speed of its own St (flux-vector splitting, v_a^+ q_a + v_b^- q_b): fiducial
-  // planetesimal mass nearer the fine-grid value on 250 cells (12.9 vs 13.4 M_earth,
-  // 11.6-11.7 on 1000 cells) but 50% more steps and stronger travelling waves at the
-  // growth front (tests/bench/results/performance_log.md); not kept.
+  // takes the first cell's value. Not flux-vector splitting (each cell's dust leaving at
+  // the speed of its own St, v_a^+ q_a + v_b^- q_b): on the fiducial scene that comes
+  // nearer the fine-grid planetesimal mass but needs many more steps and drives stronger
+  // travelling waves at the growth front (tests/bench/results/performance_log.md).
   const T st =
       f > 0 ? T(sqrt(stokes_.St(f - 1, ya) * stokes_.St(f, yb))) : stokes_.St(0, ya);
   const T v = opt_.drift ? velocity(f, ya, yb, st) : T(0.0);

@@ -17,12 +17,6 @@ namespace {
 // by ln 2/k = 0.007 (phi = 0.993 for a monomer), invisible beyond 0.05 from it.
 constexpr double kClampSharpness = 100.0;
 
-double value_of(double x) { return x; }
-template <class D>
-double value_of(const Eigen::AutoDiffScalar<D>& x) {
-  return x.value();
-}
-
 //! The state a cell's particle laws depend on, the key of the per-cell caches of St and
 //! of the rates: Sigma_d, Q_m, Q_phi (0 without porosity), Sigma_g (0 if the gas is
 //! static).
