@@ -21,22 +21,22 @@ namespace panoptic::physics {
 //! hit-and-stick decline |s_hs|/t_grow while phi is still above the floor; with the
 //! spec's t_relax = 0.01 min(t_grow, 1/Omega) the push outruns growth by t_grow Omega
 //! wherever growth is slow, and its tail lifts phi above the floor before phi reaches it
-//! (at t_grow Omega = 1e4, phi cannot fall below 1.13 floor). Measured on fiducial
-//! (issue 7): the planetesimal mass converges in the sharpness k as 12.05, 13.18, 13.44,
-//! 13.51 M_earth for k = 30, 100, 300, 1000 with the 1/Omega cap, and as 13.42 (k = 100)
-//! and 13.51 (k = 300) with this cap, at 19% fewer steps for k = 100. The cap keeps the
-//! relaxation going where growth stalls (erosion, fragmentation) on <= 1/Omega.
+//! (at t_grow Omega = 1e4, phi cannot fall below 1.13 floor). With this cap the
+//! fiducial planetesimal mass converges faster in the sharpness k than with the 1/Omega
+//! cap (13.42 and 13.51 M_earth for k = 100 and 300, against 13.18 and 13.44), at fewer
+//! steps (tests/bench/results/performance_log.md). The cap keeps the relaxation going
+//! where growth stalls (erosion, fragmentation) on <= 1/Omega.
 inline constexpr double kRelaxCapOmega = 100.0;
 
 //! Floor-relaxation time in units of min(t_grow, kRelaxCapOmega/Omega) (spec §4.4 has
 //! 0.01). On the floor phi settles where the push softplus_100(z)/t_relax balances
 //! compression, |s| t_relax/t_grow = softplus_100(z): with 0.01 that is z < 0 (the push's
 //! tail holds phi ~1% above the floor); with 0.03 it is z ~ 0 for the compression slopes
-//! -1/8 and -1/5 (spec §4.3), and the push is 3x less stiff. Measured against the sharp
-//! limit (k = 1000, 0.003) on the default grids (issue 7): fiducial planetesimal mass
-//! off by 1.1% with 0.01, 0.54% with 0.03 (0.45% with 0.1, but a floor rising with m^0.4
-//! under self-gravity then lags ~6% behind); erosion_40 by 0.22% / 0.04%; 13.5% fewer
-//! right-hand sides on fiducial, 3% on erosion_40.
+//! -1/8 and -1/5 (spec §4.3), and the push is 3x less stiff. Against the sharp limit
+//! (k = 1000, 0.003) on the default grids: fiducial planetesimal mass off by 1.1% with
+//! 0.01, 0.54% with 0.03 (0.45% with 0.1, but a floor rising with m^0.4 under
+//! self-gravity then lags ~6% behind); erosion_40 by 0.22% / 0.04%; and fewer
+//! right-hand sides (tests/bench/results/performance_log.md).
 inline constexpr double kRelaxFraction = 0.03;
 
 //! ln x for an x that is a constant of the run (a species' or an option's), remembered

@@ -132,7 +132,7 @@ T drag_regime_factor(const T& x, const T& re_p) {
 //! hard-branch solution (below). A bounded number of steps keeps the result a
 //! deterministic function of (m, phi), smooth to round-off, whose AutoDiff derivative
 //! converges to the implicit-function derivative (the Newton map is flat at its fixed
-//! point). No call of the fiducial run took more than four steps; we allow 6.
+//! point). The fiducial run needs at most four steps per call; 6 leave a margin.
 //! stokes_number_of_radius() is the same law for a known radius a = radius(m, phi, rho0)
 //! (the growth model's St cache keeps a for the rates; the same bits).
 template <class T, class G>
@@ -169,9 +169,9 @@ T stokes_number_of_radius(const T& a, const T& phi, double rho0, const LocalGasT
   // Re_p) with shape = min(2 St, 1), solved in closed form on each branch (St
   // f_i(Re_p(St)) = St_Ep x rises with St, so the solution is the least of the branch
   // solutions, and each branch's is the larger of its small- and large-St solutions);
-  // never above the Re_p = 0 law. On the fiducial run it was at most 0.17 in ln St from
-  // the smooth law's root (the p-norm corners and the shape), where the Re_p = 0 law was
-  // up to 3.1 off: the Newton solve below takes 2.9 steps on average instead of 4.1.
+  // never above the Re_p = 0 law. On the fiducial run it lies within 0.17 in ln St of
+  // the smooth law's root (the p-norm corners and the shape), where the Re_p = 0 law is
+  // up to 3.1 off, which saves the Newton solve below more than one step per call.
   {
     const T ln_sx = ln_st_ep + log(x);  // f_Re = 1 (Stokes)
     const double ln2 = std::numbers::ln2;

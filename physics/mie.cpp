@@ -28,8 +28,8 @@ MieEfficiencies mie_series(cplx m, double x) {
                                     8.0 * std::cbrt(std::abs(y))) +
                    15;
   // Only D_1 .. D_{n_stop} are used: the recurrence above n_stop runs in a scalar, so
-  // that the memory is O(x), not O(|m| x) (a table with |m| ~ 1e3 at x = 1e4 took 224
-  // MB).
+  // that the memory is O(x), not O(|m| x) (a table of |m| x entries is 224 MB at
+  // |m| ~ 1e3, x = 1e4).
   cplx d_n(0.0, 0.0);  // D_{n_mx} = 0, then D_{n-1} from D_n down to D_{n_stop + 1}
   for (int n = n_mx; n > n_stop + 1; --n) {
     const cplx ny = static_cast<double>(n) / y;

@@ -98,7 +98,7 @@ T root_p(const T& x, double p) {
 //! Where (min/max)^p < 1e-8 the root is taken as 1 + r^p/p, its Taylor series to
 //! O(r^2p) < 1e-16 (below round-off), which skips the p-th root: most calls compare
 //! quantities decades apart (the drag regime of a small grain, t_grow against the
-//! relaxation cap), and the root was the costliest part of the smooth switches.
+//! relaxation cap), and the root is the costliest part of the smooth switches.
 template <class T>
 T soft_max(const T& a, const T& b, double p = kSoftMaxPower) {
   const bool a_larger = a >= b;

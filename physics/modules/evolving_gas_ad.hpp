@@ -2,8 +2,8 @@
 //! The particle laws differentiated by an evolving Sigma_g (LocalGasT<AD>, from
 //! CellGas::at_ad), for the Jacobians of scenes with gas.evolve. Compiled in a
 //! translation unit of their own: instantiated next to the static-gas (LocalGas)
-//! versions, they made GCC stop inlining Eigen's AD kernels there, and the Jacobian of
-//! every scene 17 % slower (bench_kernels).
+//! versions, they stop GCC inlining Eigen's AD kernels there, which slows the Jacobian
+//! of every scene (bench_kernels measures it).
 #include "physics/growth_rates.hpp"
 #include "src/core/autodiff.hpp"
 

@@ -20,17 +20,14 @@ Planetesimals::Planetesimals(StateLayout& layout, const ParticleCodec& codec,
       growth_(growth),
       opt_(options) {
   // Sigma_pl only books what the channels convert (no right-hand side reads it back): a
-  // quadrature, left out of CVODE's error test (VarInfo::error_test). Its absolute
-  // tolerance used to be 1e-8 of the largest initial Sigma_d (1e4 x Sigma_d's; before
-  // that Sigma_d's own, which cost 15% of the fiducial steps); out of the error test the
-  // fiducial run takes 5-7% fewer steps, its outcomes move by < 1e-4 relative (as much
-  // as a change of round-off does) and the dust budget still closes to round-off
+  // quadrature, left out of CVODE's error test (VarInfo::error_test): its error feeds
+  // nothing back, and in the test it only costs steps, while the outcomes move no more
+  // than a change of round-off moves them and the dust budget closes to round-off
   // (tests/bench/results/performance_log.md). Nor does it carry CVODE's non-negativity
   // constraint: with no error weight, CVODE would clip any negative excursion to zero
   // without limit (its constraint correction is accepted when small in the weighted
-  // norm), and each clip loses mass from the budget (2.4e-8 at rtol 1e-2 on fiducial
-  // before this). Sigma_pl dips below zero only where Sigma_d itself sits within its
-  // tolerance of zero.
+  // norm), and each clip loses mass from the budget. Sigma_pl dips below zero only
+  // where Sigma_d itself sits within its tolerance of zero.
   if (opt_.coagulation)
     coag_slot_ =
         layout.add_cell_var({"sigma_pl_coag", "g cm^-2",
