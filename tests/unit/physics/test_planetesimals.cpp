@@ -19,7 +19,7 @@
 #include "src/solver/state_layout.hpp"
 #include "tests/unit/support/mmsn_gas.hpp"
 
-using panoptic::zcrit_lim25;
+using panoptic::physics::zcrit_lim25;
 
 TEST(Planetesimals, ZcritAtHandWorkedStokesNumbers) {
   EXPECT_NEAR(zcrit_lim25(0.01), 7.9433e-3, 1e-7);  // x = -2: -2.10
