@@ -12,6 +12,7 @@
 #include "disk/gas_disk.hpp"
 #include "physics/contact_mechanics.hpp"
 #include "physics/modules/planetesimals.hpp"
+#include "physics/planetesimal_criteria.hpp"
 #include "physics/stokes_model.hpp"
 #include "src/core/units.hpp"
 #include "src/model/simulation.hpp"
