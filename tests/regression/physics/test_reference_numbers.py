@@ -1,6 +1,6 @@
 """Independent re-derivation of the reference numbers hard-coded in four unit tests:
 tests/unit/physics/test_contact_mechanics.cpp, test_particle.cpp, test_relative_velocity.cpp and
-test_growth_rates.cpp (with the MMSN gas of tests/unit/support/mmsn_gas.hpp). Their comments say
+test_growth_*.cpp (with the MMSN gas of tests/unit/support/mmsn_gas.hpp). Their comments say
 the numbers were "worked out independently" by "a separate python3 script written from the
 spec"; that script is not in the repository. This is such a script: everything below is
 computed here from the formulas of the physics spec (physics/physics-spec.md, cited
@@ -44,25 +44,26 @@ Not covered (and why):
 * test_relative_velocity.cpp, ContinuousAcrossRegimeBoundaries (the continuity
   tolerances), the AutoDiff tests; test_particle.cpp, the Newton/shortcut round-off tests,
   the AutoDiff tests, the log-space soft-max, log1p, tanh_step and log_step saturation
-  tests and the continuity scans; test_growth_rates.cpp, GrowthContinuity,
+  tests and the continuity scans; test_growth_*.cpp, GrowthContinuity,
   GrowthAutoDiff, SoftStokesCap, GrowthMultiplier, Bouncing, RememberedLogs: bounds on
   jumps, round-off and derivatives of the C++ functions, not reference values. Checked of
   them: the numbers they quote that follow from the spec (k = 12.8 and 25.6, dv_pair never
   reaching 60 m/s at 5 AU, phi_grav(1e19 g) = 0.40, the switch masses of GrowthAutoDiff,
   the 0.05/0.95 points of log_step, 2^(1/8), the "measured maxima" 4.5 and 7.4 of the
   sampled log-slopes of dv, which the python law reproduces).
-* test_growth_rates.cpp, the ratios of particle_rates() asserted in GrowthErosionHalt,
+* test_growth_*.cpp, the ratios of particle_rates() asserted in GrowthErosionHalt,
   GrowthErosionBalance and GrowthFragmentation: the test computes those expectations at run
   time from the C++ dv_pair / dv_small_projectile and formulas written out in the test; the
   hard-coded inputs (St*, K_d, K_s, R_s/R_coag, the St of each state) are covered, and so
   are the numbers its comments quote.
-* test_growth_rates.cpp, the compaction push (PushFarBelowFloor, RelaxationCapped, ...):
+* test_growth_*.cpp, the compaction push (PushFarBelowFloor, RelaxationCapped, ...):
   it depends on t_relax = 0.03 soft_min(t_grow, 100/Omega), a choice of the code
   (kRelaxFraction, kRelaxCapOmega; spec §4.4 has 0.01 min(t_grow, 1/Omega)); the floors
   (spec §4.3), the St and the t_grow Omega regimes of those tests are covered, and the test's
   own written-out t_relax() is used only for the comment magnitudes of LittleLeakAboveFloor.
 * test_contact_mechanics.cpp, DefaultMaterials: the spec §0 material constants (inputs here).
 """
+import glob
 import math
 import os
 import re
@@ -401,12 +402,34 @@ def softplus(z, k):
 # Locating the literals in the test files
 # -------------------------------------------------------------------------------------------
 class Source:
-    def __init__(self, rel):
+    # Ends a file's last block where several test files are read as one Source.
+    END_OF_FILE = "TEST(end of file)"
+
+    def __init__(self, rel, *more):
+        """`rel` (and `more`): one test file, or globs of the files one law's tests and
+        their shared set-up are split into (their anchors are unique across them)."""
         self.rel = rel
         self.name = os.path.basename(rel)
-        with open(os.path.join(REPO, rel)) as f:
-            self.lines = f.read().split("\n")
+        paths = []
+        for pattern in (rel,) + more:
+            found = sorted(glob.glob(os.path.join(REPO, pattern)))
+            if not found:
+                raise FileNotFoundError(os.path.join(REPO, pattern))
+            paths += found
+        self.lines, self.origin = [], []
+        for path in paths:
+            with open(path) as f:
+                text = f.read().split("\n")
+            self.lines += text + [self.END_OF_FILE]
+            self.origin += [(os.path.basename(path), k + 1) for k in range(len(text) + 1)]
         self.count = {"asserted/input": 0, "comment": 0, "claim": 0}
+
+    def where(self, line):
+        """'file:line' of the 1-based line `line` of the concatenated files."""
+        if not isinstance(line, int):
+            return f"{self.name}:{line}"
+        name, k = self.origin[line - 1]
+        return f"{name}:{k}"
 
     def block(self, anchor):
         """Lines [i0, i1) from the unique line holding `anchor` to the next TEST."""
@@ -478,7 +501,7 @@ class Ref:
 
     def _report(self, src, ok, line, anchor, what, text, category="claim"):
         src.count[category] += 1
-        self.c.check(ok, f"{src.name}:{line} [{anchor}] {what}: {text}")
+        self.c.check(ok, f"{src.where(line)} [{anchor}] {what}: {text}")
 
     def cmp(self, src, anchor, literal, mine, tol, kind="rel", what="", nth=1):
         """Compare the literal of the test with `mine`."""
@@ -510,7 +533,7 @@ class Ref:
             line = src.find(anchor, literal)[1]
         except LookupError:
             line = "?"
-        msg = f"{src.name}:{line} [{anchor}] {text}"
+        msg = f"{src.where(line)} [{anchor}] {text}"
         NOTES.append(msg)
         print("NOTE  " + msg)
 
@@ -908,10 +931,11 @@ def check_relative_velocity(ref):
 
 
 # ===========================================================================================
-# test_growth_rates.cpp
+# test_growth_*.cpp (the growth-rate tests, split by law)
 # ===========================================================================================
 def check_growth(ref):
-    s = Source("tests/unit/physics/test_growth_rates.cpp")
+    s = Source("tests/unit/physics/test_growth_*.cpp",
+               "tests/unit/physics/growth_fixture.hpp")
     g = gas(5.0)
     ice = contact(ICE)
     m0, e_roll = ice["m0"], ice["e_roll"]
