@@ -43,7 +43,8 @@ MieEfficiencies geometric_optics(std::complex<double> m, double x);
 //! 1.3 mm (opaque spheres, 4 x k >> 1); for weakly absorbing compact spheres (4 x k ~ 1)
 //! the ADT chord absorption is 20-30 % low (m = 1.33 + 1e-5 i: 0.215 vs 0.280). The
 //! porous aggregates of a run are weakly absorbing too, but their index is within O(phi)
-//! of 1, where ADT is accurate (README, Synthetic observations: < 1 % at 1 Myr).
+//! of 1, where ADT is accurate (src/observe/README.md, Synthetic observations:
+//! < 1 % at 1 Myr).
 inline constexpr double kMieMaxSizeParameter = 1e4;
 
 //! mie_series for x <= kMieMaxSizeParameter, geometric_optics above.

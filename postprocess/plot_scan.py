@@ -20,7 +20,7 @@ Runs that did not complete are drawn as black crosses (along the bottom of a lin
 they have no value), completed runs without a value of the outcome (NaN, e.g.
 t_first_pl_min where no planetesimal formed) as open grey circles. Outcomes (default: those present
 of m_pl_coag, m_pl_si, m_peb_snowline, m_peb_r_in, m_dust_final, t_first_pl_min) are the
-/summary scalars of the runs (README, Output; units M_earth, au, yr).
+/summary scalars of the runs (src/io/README.md, Output; units M_earth, au, yr).
 """
 import argparse
 import os

@@ -2,8 +2,8 @@
 //! FNV-1a (64 bit) digests: the checksum of a checkpoint, and the digest of every row a
 //! run writes to a time-stacked dataset of its output. A checkpoint keeps the digests of
 //! the rows written up to it, so that a restart can tell a row the file still holds
-//! from one a writer killed while HDF5 flushed the file has lost or garbled (README
-//! "Restart").
+//! from one a writer killed while HDF5 flushed the file has lost or garbled
+//! (src/run/README.md, "Restart").
 #include <cstddef>
 #include <cstdint>
 #include <map>

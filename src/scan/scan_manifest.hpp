@@ -2,7 +2,7 @@
 //! A parameter scan: a scan file (TOML) names a base scene, fixed overrides and axes over
 //! scene keys, and expands into a manifest, the list of runs with the --set overrides of
 //! each. The manifest is written to the scan directory before any run starts and a rerun
-//! must expand to the same one (README, Scans).
+//! must expand to the same one (params/README.md, Scans).
 //!
 //! Axes: an explicit list (`values`), a linear or logarithmic range (`lin`/`log` with
 //! `num` points, both ends included). With `sampling = "grid"` the runs are the product

@@ -3,7 +3,7 @@
 //! status (completed, failed, interrupted, incomplete, not run), exit code, error, wall
 //! time, CVODE steps, the worker that ran it and the /summary scalars of its output. It
 //! is rebuilt from the run files and their status records every time, so a killed scan
-//! loses nothing: DIR/summary.h5 and DIR/summary.csv (README, Scans).
+//! loses nothing: DIR/summary.h5 and DIR/summary.csv (params/README.md, Scans).
 #include <filesystem>
 #include <string>
 #include <vector>

@@ -1,6 +1,7 @@
 // presets.cpp — the override sets of --fast and --accurate. The numbers come from the
-// work-precision study (tests/bench/work_precision.py; README, "Work-precision"), which
-// gives their measured costs and errors on params/fiducial.toml and erosion_40.toml.
+// work-precision study (tests/bench/work_precision.py; tests/bench/README.md,
+// "Work-precision"), which gives their measured costs and errors on params/fiducial.toml
+// and erosion_40.toml.
 #include "src/scene/presets.hpp"
 
 #include <stdexcept>
@@ -21,7 +22,7 @@ std::vector<std::string> preset_overrides(const std::string& preset) {
   // (compact_fragmentation uses the default 1e-6). Its steps are short enough that a
   // Jacobian kept for CVODE's own 51 steps rarely stalls Newton: the fresher ones of
   // solver.steps_per_jacobian = 10 cost more than they save there (fiducial: 10.75
-  // against 10.05 s, bench_fiducial --runs 3; README, Performance).
+  // against 10.05 s, bench_fiducial --runs 3; tests/bench/README.md, Performance).
   if (preset == "fast") return {"grid.n_cells=250", "solver.rtol=1e-4"};
   if (preset == "accurate")
     return {"grid.n_cells=1000", "solver.rtol=1e-6", "solver.steps_per_jacobian=0"};

@@ -1,7 +1,7 @@
 // presets.hpp — accuracy presets of `panoptic run --fast` / `--accurate` (issue 7): fixed
 // sets of scene overrides, chosen on the work-precision front measured by
-// tests/bench/work_precision.py (README, "Work-precision"). A preset is applied before
-// the --set options, so an explicit --set of the same key still wins.
+// tests/bench/work_precision.py (tests/bench/README.md, "Work-precision"). A preset is
+// applied before the --set options, so an explicit --set of the same key still wins.
 #pragma once
 
 #include <string>

@@ -80,11 +80,11 @@ void DiskModel::jacobian_cells(double t, std::span<const double> y,
     try {
       m->add_jacobian_cells(t, y, jac, lo, hi);
     } catch (const PatternMiss& e) {
-      throw std::logic_error(
-          "module " + std::string(m->name()) + " wrote the Jacobian entry d(" +
-          layout_->describe(e.row) + ")/d(" + layout_->describe(e.col) +
-          "), which its declare_pattern did not declare: add it there (README, Adding a "
-          "physical process)");
+      throw std::logic_error("module " + std::string(m->name()) +
+                             " wrote the Jacobian entry d(" + layout_->describe(e.row) +
+                             ")/d(" + layout_->describe(e.col) +
+                             "), which its declare_pattern did not declare: add it there "
+                             "(physics/README.md, Adding a physical process)");
     }
   }
 }

@@ -1,7 +1,8 @@
 // Benchmark (not a test): block-local time stepping of the fiducial scene, built and run,
-// for the speed targets of issues 3 and 7 (README "Performance": `bench_fiducial --lts`
-// bounds what blocks of B cells with their own step sizes could save; this measures
-// what a simple coupling of such blocks actually takes, and what it costs in accuracy).
+// for the speed targets of issues 3 and 7 (tests/bench/README.md, "Performance":
+// `bench_fiducial --lts` bounds what blocks of B cells with their own step sizes could
+// save; this measures what a simple coupling of such blocks actually takes, and what it
+// costs in accuracy).
 //
 // The scheme (a prototype, not the product's integrator): the grid is cut into blocks of
 // B neighbouring cells, each integrated by its own CVODE (BDF, KLU, the scene's
@@ -38,7 +39,8 @@
 //            [--flux-coupling] [--mean-flux]
 //            [--profile]
 //            [--set key=value ...]
-// (measurements: README "Performance" and tests/bench/results/performance_log.md)
+// (measurements: tests/bench/README.md, "Performance", and
+// tests/bench/results/performance_log.md)
 //   --block B:     cells per block (16 by default); every combination of B, V, K is run
 //   --overlap V:   each block also integrates the V cells inside it and discards them, so
 //                  that the lagged inner neighbour acts V cells away from its own cells

@@ -1,7 +1,7 @@
 // Benchmark (not a test): how large the operator-splitting error of the fiducial scene
-// is, for the multirate question of issues 3 and 7 (README "Performance": a scheme that
-// steps each cell's local physics with its own step size would need few transport
-// steps, fewer than ~500 per Myr, to beat the coupled system). Strang splitting
+// is, for the multirate question of issues 3 and 7 (tests/bench/README.md, "Performance":
+// a scheme that steps each cell's local physics with its own step size would need few
+// transport steps, fewer than ~500 per Myr, to beat the coupled system). Strang splitting
 //   L(dt/2) T(dt) L(dt/2),  L = porous growth + planetesimals (cell-local),
 //                           T = dust transport (drift, diffusion, snow line, bookings),
 // each stage integrated by its own CVODE (same rtol, restarted at every stage), over M

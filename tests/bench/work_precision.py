@@ -308,7 +308,7 @@ def main():
     ap.add_argument("--ref-rtol", type=float, default=1e-10)
     # The scene's absolute tolerance (solver.atol_sigma = 1e-8 of the initial maximum of
     # Sigma) would dominate rtol = 1e-10 wherever Sigma_d is below 100 times that maximum,
-    # i.e. everywhere: the references tighten it too (1e-12, as README's references).
+    # i.e. everywhere: the references tighten it too (1e-12, as the references of tests/bench/README.md).
     ap.add_argument("--ref-atol", type=float, default=1e-12,
                     help="solver.atol_sigma of the reference runs")
     ap.add_argument("--ref2-n", type=int, help="second reference, to bound the first's error")

@@ -636,7 +636,7 @@ def check_t_first_off_axis_label(tmp):
 
 
 def write_scan_summary(path_dir, axes, status, outcomes, sampling):
-    """DIR/summary.h5 in the layout of `panoptic scan` (README, Scans): axes {key: (values,
+    """DIR/summary.h5 in the layout of `panoptic scan` (params/README.md, Scans): axes {key: (values,
     spacing)}, status (list of str), outcomes {name: (values, units)}."""
     os.makedirs(path_dir, exist_ok=True)
     with h5py.File(os.path.join(path_dir, "summary.h5"), "w") as f:

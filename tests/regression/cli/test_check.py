@@ -1,4 +1,4 @@
-"""`panoptic check SCENE` (README "Scenes"): every shipped scene passes and prints the run
+"""`panoptic check SCENE` (params/README.md, "Scenes"): every shipped scene passes and prints the run
 it would make (grid, gas disk, state layout); the gas between r_in and r_out against the
 closed forms of the MMSN and LBP profiles; the snow line is reported where it falls,
 and said to be off the grid when T = T_sub lies beyond the outer or inside the inner edge

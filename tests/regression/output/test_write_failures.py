@@ -1,4 +1,4 @@
-"""Output that cannot be written (README "Output"): exit 4 with a message that names the
+"""Output that cannot be written (src/io/README.md, "Output"): exit 4 with a message that names the
 file, the cause and the fix, never a crash.
   * A directory as -o: "is a directory", with or without --overwrite (run, observe).
   * --overwrite of a file that is not HDF5 (a scene or notes given as -o by mistake):

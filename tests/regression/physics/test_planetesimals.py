@@ -146,7 +146,7 @@ def main():
     c.check(np.array_equal(formed, np.isfinite(t_first)),
             "first-formation times exist exactly where planetesimals formed")
     # the zone edges: the centres of the innermost and outermost cells whose Sigma_pl of
-    # the channel exceeds the formed threshold (README, Output), NaN where there is none
+    # the channel exceeds the formed threshold (src/io/README.md, Output), NaN where there is none
     thr = float(np.ravel(summ["formed_threshold"])[0])
     for ch in ("coag", "si"):
         cells = np.flatnonzero(s[f"sigma_pl_{ch}"][-1] > thr)

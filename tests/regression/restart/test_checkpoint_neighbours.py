@@ -1,4 +1,4 @@
-"""The files a new run replaces next to its output (README "Restart"): a run writing
+"""The files a new run replaces next to its output (src/run/README.md, "Restart"): a run writing
 out/x.h5 keeps its checkpoints in out/x.chk.h5 and out/x.chk.prev.h5, and a new run there
 removes those of the run it replaces. It must remove nothing else:
   * a file at either path that panoptic did not write as a checkpoint (a text file, or

@@ -1,4 +1,4 @@
-"""Restart bit for bit (README "Restart"): a run continued from a checkpoint writes
+"""Restart bit for bit (src/run/README.md, "Restart"): a run continued from a checkpoint writes
 /snapshots identical in every bit to those of the run that was never stopped, whichever
 snapshot the checkpoint is at, and ends with the same solver statistics.
 

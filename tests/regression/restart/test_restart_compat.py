@@ -1,4 +1,4 @@
-"""What a restart may change (README "Restart"): a scene that differs from the
+"""What a restart may change (src/run/README.md, "Restart"): a scene that differs from the
 checkpoint's in a key that defines the state (grid, disk, processes, dust) is refused
 with exit 2 and a message naming the key, both values and the fix, before the output is
 touched; the output times, the solver settings and checkpoint.* may change. A later

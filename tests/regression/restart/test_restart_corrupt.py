@@ -1,4 +1,4 @@
-"""A damaged checkpoint (README "Restart"): truncated, bytes flipped in the state, or left
+"""A damaged checkpoint (src/run/README.md, "Restart"): truncated, bytes flipped in the state, or left
 incomplete, it is refused with a message naming the file and what is wrong, and the
 previous checkpoint (.chk.prev.h5) is used instead, with a message saying so; the run
 then completes identical to the uninterrupted one. With both damaged: exit 4 and a

@@ -1,4 +1,4 @@
-"""Garbled rows are found on restart (README "Restart"): a writer killed while HDF5
+"""Garbled rows are found on restart (src/run/README.md, "Restart"): a writer killed while HDF5
 flushed the output can leave the chunk-index entries of rows it had flushed long before
 pointing at other data, so that a row reads back whole but wrong. A checkpoint keeps the
 digest of every row written up to it, and the restart verifies the rows it keeps: a row

@@ -1,4 +1,4 @@
-"""SIGKILL at a random moment, then restart (README "Restart"): the run cannot react, but
+"""SIGKILL at a random moment, then restart (src/run/README.md, "Restart"): the run cannot react, but
 the last checkpoint on disk is whole (written to a temporary file, fsynced, renamed), no
 snapshot written before it is lost, and the run restarted from it completes with
 /snapshots identical, bit for bit, to those of a run never killed: none missing, none
@@ -83,7 +83,7 @@ def main():
             finished = not kill_at_random(proc, chk, rng, wall)
             if finished and proc.returncode != 0:
                 # It did not finish: it stopped. A restart refuses an output file that
-                # a kill damaged beyond repair (README "Restart"), with a message.
+                # a kill damaged beyond repair (src/run/README.md, "Restart"), with a message.
                 c.check(False, f"trial {trial}: the restart before the second kill "
                                f"exited {proc.returncode}: {proc.stderr.read().strip()}")
                 continue

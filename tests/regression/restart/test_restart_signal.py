@@ -1,4 +1,4 @@
-"""Stopping to restart (README "Restart"): SIGINT, SIGTERM and --max-wall stop a run
+"""Stopping to restart (src/run/README.md, "Restart"): SIGINT, SIGTERM and --max-wall stop a run
 with exit code 75 after checkpointing its last snapshot, say where the checkpoint is and
 print the command that continues the run; that command completes the run, and the output
 then equals, bit for bit, that of a run never stopped: no snapshot missing or twice."""

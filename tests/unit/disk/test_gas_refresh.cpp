@@ -1,8 +1,8 @@
 // Simulation::refresh_local_gas on evolving gas: the pressure-gradient parameter eta
 // (spec §1.4) and the radial gas velocity v_g (spec §3 item 2) that the particle laws
-// see are those of the state they were last refreshed from (every snapshot, README "What
-// works"), checked against a power-law disk's closed forms; and the caches keyed by the
-// cell state forget what they computed with the gas before.
+// see are those of the state they were last refreshed from (every snapshot,
+// tests/README.md, "What works"), checked against a power-law disk's closed forms; and
+// the caches keyed by the cell state forget what they computed with the gas before.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,8 +1,8 @@
-// /solver of a run file (README "Output"; postprocess/reader.py reads it): every CVODE
-// counter under its own name. Each counter gets a different value (the primes 2 ... 23,
-// which no sum or swap of two of them reproduces), so an attribute written from another
-// counter is told apart; H5RoundTrip.EverythingWrittenReadsBackExactly sets only nst and
-// nje, leaving the other six at 0, where any two of them are equal.
+// /solver of a run file (src/io/README.md, "Output"; postprocess/reader.py reads it):
+// every CVODE counter under its own name. Each counter gets a different value (the primes
+// 2 ... 23, which no sum or swap of two of them reproduces), so an attribute written from
+// another counter is told apart; H5RoundTrip.EverythingWrittenReadsBackExactly sets only
+// nst and nje, leaving the other six at 0, where any two of them are equal.
 #include <gtest/gtest.h>
 
 #include <filesystem>

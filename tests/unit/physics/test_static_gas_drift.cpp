@@ -90,14 +90,15 @@ TEST(DustTransportFlux, FaceVelocityWithStaticGasThatIsNotAPowerLaw) {
 }
 
 // The limited (van Leer) drift flux on every face, inward and outward, against the MUSCL
-// formula worked out from the state (README, Work-precision: `transport.advection =
-// "van_leer"`; van Leer 1977, LeVeque 2002 §6.9). 5 log-spaced cells from 3 to 9 au
-// (d ln r = ln(3)/5 = 0.2197225), St = 0.1 everywhere, MMSN temperature, static gas
-// Sigma_g = 1700 (r_c/au)^-1.5 x (1, 1, 3, 3, 1): dlnP/dlnr = -3.25 +
-// ln(x_b/x_a)/0.2197225 between centres is -3.25 (faces 0, 1, 3: inward), +1.7802 (face
-// 2: outward, the pressure rising) and -8.2802 (face 4: inward). Sigma_d = c_i / (r_c/au)
-// with c = (1, 1.5, 2.5, 4.5, 8.5), so q = 2 pi r_c Sigma_d = 2 pi au c rises with r and
-// every limited face has a b > 0 with a != b. Upwind (u), far (w) and downwind (d) cells:
+// formula worked out from the state (tests/bench/README.md, Work-precision:
+// `transport.advection = "van_leer"`; van Leer 1977, LeVeque 2002 §6.9). 5 log-spaced
+// cells from 3 to 9 au (d ln r = ln(3)/5 = 0.2197225), St = 0.1 everywhere, MMSN
+// temperature, static gas Sigma_g = 1700 (r_c/au)^-1.5 x (1, 1, 3, 3, 1): dlnP/dlnr =
+// -3.25 + ln(x_b/x_a)/0.2197225 between centres is -3.25 (faces 0, 1, 3: inward), +1.7802
+// (face 2: outward, the pressure rising) and -8.2802 (face 4: inward). Sigma_d = c_i /
+// (r_c/au) with c = (1, 1.5, 2.5, 4.5, 8.5), so q = 2 pi r_c Sigma_d = 2 pi au c rises
+// with r and every limited face has a b > 0 with a != b. Upwind (u), far (w) and downwind
+// (d) cells:
 //   face 1 (inward):  u = 1, w = 2, d = 0: limited
 //   face 2 (outward): u = 1, w = 0, d = 2: limited (the far cell is cell 0)
 //   face 3 (inward):  u = 3, w = 4, d = 2: limited

@@ -6,7 +6,7 @@
 // the snow line and (1 - f_ice) 0.01 = 0.005 inside it (r_snow = (280/170)^2 au = 2.713
 // au, between r_c(1) = 2.569 and r_c(2) = 3.036 au). The largest initial Sigma_d is then
 // that of cell 2, 17 x 3.0365^-1.5 = 3.2129 g cm^-2, not that of cell 0 (8.5
-// x 2.1742^-1.5 = 2.6514): the formed threshold is 1e-6 of it (README
+// x 2.1742^-1.5 = 2.6514): the formed threshold is 1e-6 of it (src/io/README.md,
 // "Output"), 3.2129e-6 g cm^-2. Sigma_pl is set by hand in a few cells (direct
 // coagulation in cells 10-14, the streaming instability in 20-21, values just below the
 // threshold in others), the monitors' cumulative masses to chosen fractions of the
@@ -213,7 +213,8 @@ TEST(RunDiagnostics, SummaryOfAStateSetByHand) {
     EXPECT_NEAR(budget[6 + c] * kMearthG, want[c], 1e-10 * m0) << "column " << c;
 }
 
-// /grid as Simulation::prepare_output writes it (README "Output", postprocess/reader.py:
+// /grid as Simulation::prepare_output writes it (src/io/README.md, "Output",
+// postprocess/reader.py:
 // "/grid/r_c, r_f cell centres (N,) and faces (N+1,) [au]; /grid/area (N,) [cm^2]"):
 // values and units attributes against the grid worked out above.
 TEST(RunDiagnostics, GridIsWrittenInAu) {

@@ -259,7 +259,7 @@ TEST(Config, ExclusiveAndInclusiveMaximum) {
   expect_parts(error_of("", {"disk.alpha=1e-9"}),
                {"--set", "disk.alpha = 1e-9", "must be >= 1e-08 and <= 1"});
   // bounds set where a value in the old range (> 0) reached CVODE and failed or stalled
-  // (README, Stability at the extremes)
+  // (tests/bench/README.md, Stability at the extremes)
   expect_parts(error_of("", {"growth.f_grow=101"}),
                {"growth.f_grow = 101", "must be > 0 and <= 100"});
   expect_parts(error_of("[erosion]\nmodel = \"halt\"\nwidth = 9e-4\n"),
