@@ -104,12 +104,13 @@ int run_command_line(int argc, char** argv) {
   // accuracy presets (src/scene/presets.hpp): overrides applied before --set, so --set
   // wins
   bool fast = false, accurate = false;
-  auto* fast_opt = run_cmd->add_flag(
-      "--fast", fast,
-      "preset: coarser grid and looser tolerance (README, Work-precision)");
+  auto* fast_opt = run_cmd->add_flag("--fast", fast,
+                                     "preset: coarser grid and looser tolerance "
+                                     "(tests/bench/README.md, Work-precision)");
   run_cmd
       ->add_flag("--accurate", accurate,
-                 "preset: finer grid and tighter tolerance (README, Work-precision)")
+                 "preset: finer grid and tighter tolerance (tests/bench/README.md, "
+                 "Work-precision)")
       ->excludes(fast_opt);
   run_cmd->add_option("--max-wall", args.max_wall,
                       "stop with a checkpoint (exit code 75) before this wall time, "

@@ -1,7 +1,7 @@
 #pragma once
 //! Checkpoints: the state of a run at a snapshot time, enough to continue it with
 //! `panoptic run SCENE --restart out/<run>.chk.h5` and write the same snapshots,
-//! bit for bit, as the run that was never stopped (README "Restart").
+//! bit for bit, as the run that was never stopped (src/run/README.md, Restart).
 //!
 //! A checkpoint is a small HDF5 file next to the output: `<stem>.chk.h5`, the one before
 //! kept as `<stem>.chk.prev.h5`. It holds the raw CVODE state y at t, the layout

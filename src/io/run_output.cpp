@@ -33,8 +33,8 @@ std::string new_run_id() {
 }
 
 // A restart continues a fresh copy of its output, not the file as the stopped run left
-// it (README "Restart"): a writer killed while HDF5 flushed the file can leave a chunk
-// index inconsistent, and a run that appends to it can lose rows it writes itself
+// it (src/run/README.md, Restart): a writer killed while HDF5 flushed the file can leave
+// a chunk index inconsistent, and a run that appends to it can lose rows it writes itself
 // (regression.test_restart_killed under load: a restart that completed had rows 51-55,
 // the first it wrote, unallocated). h5::copy_file rebuilds every dataset with a new
 // index; the copy is written beside the file, at `tmp`, and fsynced; the restart sets it

@@ -84,7 +84,7 @@ std::string Simulation::summary() const {
     s << physics::contact_summary("ice", material_from_config(cfg_, "ice")) << "\n";
     s << physics::contact_summary("silicate", material_from_config(cfg_, "sil")) << "\n";
     // spec §5.3 has bouncing at every speed for phi >= phi_bounce, and monomers start at
-    // phi = 1 (README, "What works").
+    // phi = 1 (tests/README.md, "What works").
     if (cfg_.flag("bouncing.enabled"))
       s << "WARNING: bouncing.enabled: particles with phi >= bouncing.phi_bounce = "
         << cfg_.real("bouncing.phi_bounce")
@@ -94,7 +94,7 @@ std::string Simulation::summary() const {
                   "below it, and then never bounce"
                 : "with porosity off nothing grows")
         << "\n";
-    // refresh_local_gas runs where CVODE restarts (README, "What works")
+    // refresh_local_gas runs where CVODE restarts (tests/README.md, "What works")
     if (gas_.evolves() && !cfg_.flag("solver.reinit_at_snapshots"))
       s << "WARNING: gas.evolve with solver.reinit_at_snapshots = false: the pressure "
            "gradient (eta) and gas velocity that the particle laws see are set once, at "

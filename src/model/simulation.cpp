@@ -105,7 +105,8 @@ Simulation::Simulation(const Config& cfg)
        [this](std::span<const double> y) { return planetesimal_mass(y).second; }},
   };
   // then those the modules declare, in their order: the transport's m_out_inner and
-  // m_sublimated, and those of a process added later (README, Adding a physical process)
+  // m_sublimated, and those of a process added later (physics/README.md, Adding a
+  // physical process)
   for (const auto& m : modules)
     for (BudgetTerm& term : m->budget_terms()) budget_terms_.push_back(std::move(term));
   layout_->freeze();

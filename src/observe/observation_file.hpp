@@ -1,6 +1,6 @@
 #pragma once
-//! The writer of `panoptic observe`: an observation as an HDF5 file (layout: README
-//! "Synthetic observations").
+//! The writer of `panoptic observe`: an observation as an HDF5 file (layout:
+//! src/observe/README.md, Synthetic observations).
 #include <filesystem>
 
 #include "src/observe/observation.hpp"

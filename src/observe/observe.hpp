@@ -4,8 +4,8 @@
 //! emits at the gas temperature from a geometrically thin slab (emission.hpp); the image
 //! is projected, convolved with the beam and averaged over deprojected annuli
 //! (sky_images.hpp); the spectral index is taken between every pair of wavelengths
-//! (spectral_index.hpp). The steps: src/observe/README.md; output layout: README
-//! "Synthetic observations".
+//! (spectral_index.hpp). The steps: src/observe/README.md; output layout: the same
+//! README, Synthetic observations.
 #include <string>
 #include <vector>
 

@@ -55,7 +55,7 @@ void print_budget(const Simulation& sim, std::span<const double> y) {
     std::printf(
         "WARNING: the dust budget does not close (%.2e > 1e-10): some dust leaves or "
         "enters the grid without a budget term; a module's sink or source is not booked "
-        "(README, Adding a physical process)\n",
+        "(physics/README.md, Adding a physical process)\n",
         error);
 }
 

@@ -48,7 +48,8 @@ class Where {
 };
 
 const char* kFormat =
-    "see README, Scans: [scan] scene = \"...\", set = [...], sampling = \"grid\" or "
+    "see params/README.md, Scans: [scan] scene = \"...\", set = [...], sampling = "
+    "\"grid\" or "
     "\"lhs\", samples, seed; [[axis]] key = \"table.key\" with values = [...], or "
     "lin/log = [lo, hi] (and num for grid sampling), zip = \"group\"";
 

@@ -120,7 +120,7 @@ std::vector<KeySpec> bouncing_keys() {
       when({growth_on()},
            flag("bouncing.enabled", "false",
                 "no sticking of compact aggregates (§5.3 as written: at every speed and "
-                "mass, not a usable bouncing barrier; see README)")),
+                "mass, not a usable bouncing barrier; see tests/README.md, What works)")),
       when({growth_on(), is("bouncing.enabled", {"true"})},
            real("bouncing.phi_bounce", "0.3", "",
                 "filling factor above which aggregates bounce", 0.0, true, 1.0, false)),

@@ -4,7 +4,7 @@
 
 namespace panoptic::scene_detail {
 
-// [observe] `panoptic observe` (README "Synthetic observations"): optical
+// [observe] `panoptic observe` (src/observe/README.md): optical
 // constants m = n + i k per species, tabulated against wavelength (n linear, k
 // log-linear in ln lambda between the rows; no extrapolation).
 std::vector<KeySpec> observe_keys() {

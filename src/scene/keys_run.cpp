@@ -27,7 +27,7 @@ std::vector<KeySpec> grid_keys() {
   };
 }
 
-// [solver] CVODE BDF + KLU; reinit_at_snapshots: restart, README "Restart"
+// [solver] CVODE BDF + KLU; reinit_at_snapshots: restart, src/run/README.md "Restart"
 std::vector<KeySpec> solver_keys() {
   return {
       real("solver.rtol", "1e-6", "", "CVODE relative tolerance", 1e-14, false, 0.1,
@@ -54,7 +54,7 @@ std::vector<KeySpec> solver_keys() {
               "(CVodeSetLSetupFrequency, CVodeSetJacEvalFrequency; CVODE's own are 20 "
               "and 51): a Jacobian of at most 2k - 1 steps keeps Newton converging where "
               "a cell crosses one of the model's smooth switches, fewer failed "
-              "iterations and steps (README, Performance); 0: CVODE's own",
+              "iterations and steps (tests/bench/README.md, Performance); 0: CVODE's own",
               0, 1e6),
       flag("solver.reinit_at_snapshots", "true",
            "reinitialise CVODE at every snapshot time, so that a run restarted from a "
@@ -64,7 +64,7 @@ std::vector<KeySpec> solver_keys() {
   };
 }
 
-// [checkpoint] restart, README "Restart"
+// [checkpoint] restart, src/run/README.md "Restart"
 std::vector<KeySpec> checkpoint_keys() {
   return {
       real("checkpoint.every_wall_s", "1800.0", "s",
