@@ -84,8 +84,8 @@ class DustTransport : public PhysicsModule {
   //! A new global variable booking a dust mass `name` ("m_sublimated"; `what` describes
   //! it), in units of mass_unit() (the initial dust mass on the grid), in CVODE's error
   //! test at the absolute tolerance of Sigma_d over the disk, without a >= 0 constraint:
-  //! the variable a sink of dust books what it removes in (README, Adding a physical
-  //! process). Before StateLayout::freeze(); returns its global slot.
+  //! the variable a sink of dust books what it removes in (physics/README.md, Adding a
+  //! physical process). Before StateLayout::freeze(); returns its global slot.
   int add_booked_mass(StateLayout& layout, const std::string& name,
                       const std::string& what) const;
   //! The budget terms it books: the mass through r_in (m_out_inner) and the ice

@@ -49,7 +49,7 @@ struct ParticleCodec {
 //! velocity v_r_gas, which depend on the neighbours' Sigma_g, are set from the state at
 //! every snapshot (set_pressure_and_flow, from Simulation::refresh_local_gas): between
 //! snapshots they stay fixed, so that each cell's particle laws stay local in the
-//! Jacobian (README, "What works": what an instantaneous eta would change).
+//! Jacobian (tests/README.md, "What works": what an instantaneous eta would change).
 class CellGas {
  public:
   CellGas(std::vector<physics::LocalGas> reference, const GasColumn& gas)

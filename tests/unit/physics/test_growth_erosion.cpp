@@ -118,14 +118,14 @@ TEST(GrowthErosionBalance, NetErosionWellAboveVEros) {
 }
 
 TEST(GrowthErosionBalance, SpecDefaultsHardlyErodeAtAnySt) {
-  // README's claim about E2 at the spec defaults, over the whole range of St at 5 au
-  // (400 log-spaced St from 1e-6 to 1e4; m and phi enter the ratio to coagulation only
-  // through the Brownian term, negligible here): (1) with f_s = 0.1, eps_eros = 1 the
-  // E2 rate stays >= 0.88 of the coagulation rate everywhere (measured: 0.889, at
-  // St = 0.37); (2) the smallest f_s that gives net erosion at some St: the rate is
-  // linear in f_s at fixed St, ratio = 1 - f_s (1 - B(St)), so it turns negative first
-  // where the f_s = 0.1 ratio is lowest, at f_s* = 0.1 / (1 - worst) = 0.901 (at St = 1,
-  // in the test above, it takes f_s > 0.93); checked on the code's own sign on both
+  // tests/README.md's claim (What works) about E2 at the spec defaults, over the whole
+  // range of St at 5 au (400 log-spaced St from 1e-6 to 1e4; m and phi enter the ratio to
+  // coagulation only through the Brownian term, negligible here): (1) with f_s = 0.1,
+  // eps_eros = 1 the E2 rate stays >= 0.88 of the coagulation rate everywhere (measured:
+  // 0.889, at St = 0.37); (2) the smallest f_s that gives net erosion at some St: the
+  // rate is linear in f_s at fixed St, ratio = 1 - f_s (1 - B(St)), so it turns negative
+  // first where the f_s = 0.1 ratio is lowest, at f_s* = 0.1 / (1 - worst) = 0.901 (at St
+  // = 1, in the test above, it takes f_s > 0.93); checked on the code's own sign on both
   // sides of f_s*.
   const LocalGas gas = mmsn_gas(5.0);
   const Species sp = ice_species();
