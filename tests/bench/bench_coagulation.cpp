@@ -20,6 +20,7 @@
 #include "physics/coagulation/smoluchowski.hpp"
 #include "physics/contact_mechanics.hpp"
 #include "physics/particle.hpp"
+#include "tests/unit/support/ice_cell_model.hpp"
 #include "tests/unit/support/mmsn_gas.hpp"
 
 using namespace panoptic::physics;
@@ -45,16 +46,8 @@ double time_it(int repeats, const std::function<void()>& f) {
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::atoi(argv[1]) : 50;
   const LocalGas gas = mmsn_gas(5.0);
-  const MonomerMaterial ice = ice_material();
-  CellModel model;
-  model.species.a0 = ice.a0;
-  model.species.rho0 = ice.rho0;
-  model.species.m0 = monomer_mass(ice.a0, ice.rho0);
-  model.species.e_roll = 4.74e-9;
-  model.outcomes.fragmentation = true;
-  model.outcomes.cratering = true;
-  model.outcomes.v_frag = 100.0;
-  model.outcomes.v_eros = 100.0;
+  const CellModel model = panoptic::testing::ice_cell_model(
+      {.fragmentation = true, .cratering = true, .v_frag = 100.0, .v_eros = 100.0});
   const Smoluchowski eng(MassGrid(1e-12, 1e5, 7.0));
   const int n = eng.size();
   std::vector<double> sigma(n), psi(n);

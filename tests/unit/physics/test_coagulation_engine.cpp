@@ -18,6 +18,7 @@
 #include "physics/contact_mechanics.hpp"
 #include "physics/particle.hpp"
 #include "tests/unit/support/dense_cvode.hpp"
+#include "tests/unit/support/ice_cell_model.hpp"
 #include "tests/unit/support/mmsn_gas.hpp"
 
 namespace panoptic::physics::coagulation {
@@ -205,16 +206,8 @@ TEST(CoagulationEngine, PorousJacobianOfTheDiskCellMatchesFullDifferences) {
   // state of bench_coagulation, where holding the coefficients fixed gives 0.21, and
   // 0.28 with fragmentation)
   const LocalGas gas = mmsn_gas(5.0);
-  const MonomerMaterial ice = ice_material();
-  CellModel model;
-  model.species.a0 = ice.a0;
-  model.species.rho0 = ice.rho0;
-  model.species.m0 = monomer_mass(ice.a0, ice.rho0);
-  model.species.e_roll = 4.74e-9;
-  model.outcomes.fragmentation = true;
-  model.outcomes.cratering = true;
-  model.outcomes.v_frag = 100.0;
-  model.outcomes.v_eros = 100.0;
+  const CellModel model = testing::ice_cell_model(
+      {.fragmentation = true, .cratering = true, .v_frag = 100.0, .v_eros = 100.0});
   const Smoluchowski eng(MassGrid(1e-12, 1e4, 4.0));
   const int n = eng.size();
   std::vector<double> y(2 * n);
@@ -457,16 +450,8 @@ TEST(CoagulationKernel, PorousCellCoefficients) {
   // the porous builder: floors from physics/compaction.hpp per bin, product porosity
   // per pair; the engine's right-hand side conserves mass with them
   const LocalGas gas = mmsn_gas(5.0);
-  const MonomerMaterial ice = ice_material();
-  CellModel model;
-  model.species.a0 = ice.a0;
-  model.species.rho0 = ice.rho0;
-  model.species.m0 = monomer_mass(ice.a0, ice.rho0);
-  model.species.e_roll = 4.74e-9;
-  model.outcomes.fragmentation = true;
-  model.outcomes.cratering = true;
-  model.outcomes.v_frag = 6e3;
-  model.outcomes.v_eros = 4e3;
+  const CellModel model = testing::ice_cell_model(
+      {.fragmentation = true, .cratering = true, .v_frag = 6e3, .v_eros = 4e3});
   const Smoluchowski eng(MassGrid(model.species.m0, 1e3, 7.0));
   const int n = eng.size();
   std::vector<double> sigma(n), psi(n);

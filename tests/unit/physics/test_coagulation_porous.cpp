@@ -15,6 +15,7 @@
 #include "physics/contact_mechanics.hpp"
 #include "physics/particle.hpp"
 #include "tests/unit/support/dense_cvode.hpp"
+#include "tests/unit/support/ice_cell_model.hpp"
 #include "tests/unit/support/mmsn_gas.hpp"
 
 namespace panoptic::physics::coagulation {
@@ -22,12 +23,7 @@ namespace {
 
 TEST(CoagulationPorous, MonomersGrowIntoFluffyAggregates) {
   const LocalGas gas = mmsn_gas(5.0);
-  const MonomerMaterial ice = ice_material();
-  CellModel model;
-  model.species.a0 = ice.a0;
-  model.species.rho0 = ice.rho0;
-  model.species.m0 = monomer_mass(ice.a0, ice.rho0);
-  model.species.e_roll = 4.74e-9;  // spec §0
+  const CellModel model = testing::ice_cell_model();
   const Smoluchowski eng(MassGrid(model.species.m0, 1e-5, 7.0));
   const int n = eng.size();
   const auto& m = eng.grid().m;
