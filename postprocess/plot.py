@@ -228,23 +228,31 @@ def parse_times(text):
 
 def main(argv=None):
     """Command-line entry point; returns the exit status."""
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("run", help="run file (HDF5) written by panoptic")
-    parser.add_argument("-o", "--outdir", help="output directory (default: RUN_plots/)")
+    parser = run_cli_parser(__doc__)
     parser.add_argument("--times-yr", type=parse_times,
                         help="comma-separated times [yr]; the nearest snapshots are plotted")
-    style.add_cli_options(parser)
-    args = parser.parse_args(argv)
-    with style.from_cli(args):
-        return _main(args)
+    return style.run_cli(parser, argv, _main)
+
+
+def run_cli_parser(doc):
+    """The parser of a command that plots one run: RUN and -o/--outdir."""
+    return style.cli_parser(doc, "run", "run file (HDF5) written by panoptic",
+                            "output directory (default: RUN_plots/)")
+
+
+def load_run_to_plot(path):
+    """The run at `path`, or None (said on stderr) where it holds no snapshot."""
+    run = load_run(path)
+    if run.n_snapshots == 0:
+        print(f"{path}: no snapshots to plot", file=sys.stderr)
+        return None
+    return run
 
 
 def _main(args):
     """main() inside the style options of the command line."""
-    run = load_run(args.run)
-    if run.n_snapshots == 0:
-        print(f"{args.run}: no snapshots to plot", file=sys.stderr)
+    run = load_run_to_plot(args.run)
+    if run is None:
         return 1
     indices = (nearest_snapshots(run.time, args.times_yr) if args.times_yr
                else select_snapshots(run.time))

@@ -18,7 +18,6 @@ The figures share the style of the run's (panoptic-plot): constrained layout, li
 the title above, a provenance footer. Every plot_* function takes an Observation
 (load_observation) and `ax=`, and returns its Figure.
 """
-import argparse
 import os
 import sys
 
@@ -195,26 +194,26 @@ def plot_spectral_index(d, out_path=None, ax=None, title=None):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("obs", help="output of panoptic observe (HDF5)")
-    ap.add_argument("-o", "--outdir", help="output directory (default OBS_plots/)")
-    style.add_cli_options(ap)
-    args = ap.parse_args(argv)
-    with style.from_cli(args):
-        d = load_observation(args.obs)
-        outdir = args.outdir or os.path.splitext(args.obs)[0] + "_plots"
-        os.makedirs(outdir, exist_ok=True)
-        plot_images(d, outdir)
-        p = os.path.join(outdir, style.file_name("profiles.png"))
-        plot_profiles(d, p)
+    """Command line: the figures of an observation into OUTDIR; returns the exit status."""
+    parser = style.cli_parser(__doc__, "obs", "output of panoptic observe (HDF5)",
+                              "output directory (default OBS_plots/)")
+    return style.run_cli(parser, argv, _main)
+
+
+def _main(args):
+    """main() inside the style options of the command line."""
+    d = load_observation(args.obs)
+    outdir = args.outdir or os.path.splitext(args.obs)[0] + "_plots"
+    os.makedirs(outdir, exist_ok=True)
+    plot_images(d, outdir)
+    p = os.path.join(outdir, style.file_name("profiles.png"))
+    plot_profiles(d, p)
+    print(p)
+    p = os.path.join(outdir, style.file_name("spectral_index.png"))
+    if plot_spectral_index(d, p) is None:
+        print("spectral_index.png: one wavelength only, no spectral index", file=sys.stderr)
+    else:
         print(p)
-        p = os.path.join(outdir, style.file_name("spectral_index.png"))
-        if plot_spectral_index(d, p) is None:
-            print("spectral_index.png: one wavelength only, no spectral index",
-                  file=sys.stderr)
-        else:
-            print(p)
     return 0
 
 

@@ -25,7 +25,6 @@ every figure that could be made was written, 1 otherwise. Every plot_* function 
 its Figure, draws into a given `ax=` (then the caller's figure keeps its size, title and
 footer), and writes nothing when out_path is None.
 """
-import argparse
 import os
 import sys
 import traceback
@@ -37,7 +36,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from . import plot, style
-from .reader import BUILT_IN_BUDGET_TERMS, M_EARTH, MYR, load_run
+from .reader import BUILT_IN_BUDGET_TERMS, M_EARTH, MYR
 
 FORMED_FRACTION = 1e-6        # Sigma_pl > this x the largest initial Sigma_d: formed
                               # (src/run/diagnostics.cpp; /summary/formed_threshold)
@@ -754,21 +753,13 @@ def figures(run):
 
 def main(argv=None):
     """Command-line entry point; returns the exit status."""
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("run", help="run file (HDF5) written by panoptic")
-    parser.add_argument("-o", "--outdir", help="output directory (default: RUN_plots/)")
-    style.add_cli_options(parser)
-    args = parser.parse_args(argv)
-    with style.from_cli(args):
-        return _main(args)
+    return style.run_cli(plot.run_cli_parser(__doc__), argv, _main)
 
 
 def _main(args):
     """main() inside the style options of the command line."""
-    run = load_run(args.run)
-    if run.n_snapshots == 0:
-        print(f"{args.run}: no snapshots to plot", file=sys.stderr)
+    run = plot.load_run_to_plot(args.run)
+    if run is None:
         return 1
     outdir = args.outdir or plot.default_outdir(args.run)
     os.makedirs(outdir, exist_ok=True)

@@ -22,7 +22,6 @@ t_first_pl_min where no planetesimal formed) as open grey circles. Outcomes (def
 of m_pl_coag, m_pl_si, m_peb_snowline, m_peb_r_in, m_dust_final, t_first_pl_min) are the
 /summary scalars of the runs (src/io/README.md, Output; units M_earth, au, yr).
 """
-import argparse
 import os
 import sys
 
@@ -297,19 +296,13 @@ def left_out_note(s, shown):
 
 def main(argv=None):
     """Command line: the figures of DIR/summary.h5 into OUTDIR; returns the exit status."""
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("scan_dir")
-    ap.add_argument("-o", "--outdir")
+    ap = style.cli_parser(__doc__, "scan_dir", None, None)
     ap.add_argument("--axes", help="one or two axis keys, comma-separated (default: the "
                                    "first two numeric axes)")
     ap.add_argument("--outcomes", help="comma-separated /summary names")
     ap.add_argument("--log", action="append", default=[], metavar="KEY",
                     help="draw axis KEY on a log scale (repeat, or comma-separate)")
-    style.add_cli_options(ap)
-    a = ap.parse_args(argv)
-    with style.from_cli(a):
-        return _main(a)
+    return style.run_cli(ap, argv, _main)
 
 
 def _main(a):

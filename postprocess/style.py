@@ -7,6 +7,7 @@ The command lines set them from --size, --no-footer, --title and --format
 (add_cli_options, from_cli). A plot function given `ax=` draws into that axes and leaves
 the figure's size, footer and saving to the caller.
 """
+import argparse
 import contextlib
 import os
 
@@ -102,6 +103,24 @@ def add_cli_options(parser):
     parser.add_argument("--size", default="default",
                         help="figure width: column (3.5 in, fonts 7 pt), page (7.1 in), "
                              "or inches (default: each figure's own)")
+
+
+def cli_parser(doc, source, source_help, outdir_help):
+    """The parser of a plotting command: description `doc`, the positional `source` and
+    -o/--outdir; the caller adds its own options, then calls run_cli."""
+    parser = argparse.ArgumentParser(description=doc,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument(source, help=source_help)
+    parser.add_argument("-o", "--outdir", help=outdir_help)
+    return parser
+
+
+def run_cli(parser, argv, body):
+    """Parse `argv` with the style options added and return body(args), run inside them."""
+    add_cli_options(parser)
+    args = parser.parse_args(argv)
+    with from_cli(args):
+        return body(args)
 
 
 def from_cli(args):
