@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "physics/coagulation/cell_coefficients.hpp"
@@ -64,6 +65,37 @@ std::vector<double> synthetic_psi(const std::vector<double>& sigma) {
   return p;
 }
 
+//! The analytic Jacobian `jac` (row-major, y.size() squared) against central differences
+//! (step 1e-6 |y_j|) of the right-hand side f: the largest |J - J_fd|, |J| and |J_fd|;
+//! with `column_scaled` each column j is multiplied by y_j (d/d ln y_j).
+struct FdComparison {
+  double err = 0.0, max_analytic = 0.0, max_fd = 0.0;
+};
+template <class F>
+FdComparison compare_with_differences(F f, const std::vector<double>& jac,
+                                      std::vector<double> y, bool column_scaled) {
+  const int nv = static_cast<int>(y.size());
+  FdComparison d;
+  for (int col = 0; col < nv; ++col) {
+    const double h = 1e-6 * std::abs(y[col]);
+    const double keep = y[col];
+    const double w = column_scaled ? keep : 1.0;
+    y[col] = keep + h;
+    const auto fp = f(y);
+    y[col] = keep - h;
+    const auto fm = f(y);
+    y[col] = keep;
+    for (int row = 0; row < nv; ++row) {
+      const double fd = (fp[row] - fm[row]) / (2.0 * h) * w;
+      const double an = jac[static_cast<std::size_t>(row) * nv + col] * w;
+      d.err = std::max(d.err, std::abs(an - fd));
+      d.max_analytic = std::max(d.max_analytic, std::abs(an));
+      d.max_fd = std::max(d.max_fd, std::abs(fd));
+    }
+  }
+  return d;
+}
+
 //! max |J - J_fd| / max |J|, J_fd by central differences of the right-hand side.
 double jacobian_error(const Smoluchowski& eng, const CellCoefficients& c,
                       std::vector<double> y, bool porous) {
@@ -82,23 +114,8 @@ double jacobian_error(const Smoluchowski& eng, const CellCoefficients& c,
   eng.jacobian(
       c, std::span<const double>(y.data(), n),
       porous ? std::span<const double>(y.data() + n, n) : std::span<const double>(), jac);
-  double err = 0.0, scale = 0.0;
-  for (int col = 0; col < nv; ++col) {
-    const double h = 1e-6 * std::abs(y[col]);
-    const double keep = y[col];
-    y[col] = keep + h;
-    const auto fp = f(y);
-    y[col] = keep - h;
-    const auto fm = f(y);
-    y[col] = keep;
-    for (int row = 0; row < nv; ++row) {
-      const double fd = (fp[row] - fm[row]) / (2.0 * h);
-      const double an = jac[static_cast<std::size_t>(row) * nv + col];
-      err = std::max(err, std::abs(an - fd));
-      scale = std::max(scale, std::abs(an));
-    }
-  }
-  return err / scale;
+  const FdComparison d = compare_with_differences(f, jac, std::move(y), false);
+  return d.err / d.max_analytic;
 }
 
 TEST(CoagulationEngine, JacobianMatchesFiniteDifferencesCompact) {
@@ -135,24 +152,9 @@ double full_jacobian_error(const Smoluchowski& eng, Coefficients coefficients,
   std::vector<double> jac(static_cast<std::size_t>(nv) * nv);
   eng.jacobian(coefficients(y), std::span<const double>(y.data(), n),
                std::span<const double>(y.data() + n, n), jac);
-  double err = 0.0, scale = 0.0;
-  for (int col = 0; col < nv; ++col) {
-    const double h = 1e-6 * std::abs(y[col]);
-    const double keep = y[col];
-    y[col] = keep + h;
-    const auto fp = f(y);
-    y[col] = keep - h;
-    const auto fm = f(y);
-    y[col] = keep;
-    for (int row = 0; row < nv; ++row) {
-      const double fd = (fp[row] - fm[row]) / (2.0 * h) * keep;
-      const double an = jac[static_cast<std::size_t>(row) * nv + col] * keep;
-      err = std::max(err, std::abs(an - fd));
-      scale = std::max(scale, std::abs(fd));
-    }
-  }
-  std::printf("full Jacobian error %.2e\n", err / scale);
-  return err / scale;
+  const FdComparison d = compare_with_differences(f, jac, std::move(y), true);
+  std::printf("full Jacobian error %.2e\n", d.err / d.max_fd);
+  return d.err / d.max_fd;
 }
 
 TEST(CoagulationEngine, JacobianFollowsTheCoefficientsThroughPorosity) {
