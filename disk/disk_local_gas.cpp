@@ -8,7 +8,7 @@ physics::LocalGas local_gas_at(const GasDisk& disk, double r, double sigma_g,
                                double dlnp_dlnr) {
   const ThermalParams& th = disk.thermal();
   return physics::make_local_gas(sigma_g, disk.temperature(r), r, disk.star().mass,
-                                 th.alpha, dlnp_dlnr, th.mu, th.sigma_mol);
+                                 disk.alpha(r), dlnp_dlnr, th.mu, th.sigma_mol);
 }
 
 std::vector<physics::LocalGas> local_gas_centres(const GasDisk& disk, const Grid& grid,

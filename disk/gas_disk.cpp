@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "disk/pressure_gradient.hpp"
 #include "src/core/units.hpp"
@@ -33,7 +34,7 @@ double GasDisk::v_k(double r) const { return omega_k(r) * r; }
 
 double GasDisk::h_g(double r) const { return c_s(r) / omega_k(r); }
 
-double GasDisk::nu(double r) const { return th_.alpha * c_s(r) * h_g(r); }
+double GasDisk::nu(double r) const { return alpha(r) * c_s(r) * h_g(r); }
 
 double GasDisk::rho_mid(double sigma_g, double r) const {
   return sigma_g / (std::sqrt(2.0 * kPi) * h_g(r));
@@ -88,12 +89,68 @@ double Lbp74Disk::mass_between(double r1, double r2) const {
   return -m_disk_ * std::exp(-u1) * std::expm1(-du);
 }
 
+double PowerLawDisk::sigma_1au_for_mass(double m, double p, double r1, double r2) {
+  return m / PowerLawDisk({}, {}, 1.0, p).mass_between(r1, r2);
+}
+
+double TableDisk::r_snow() const { return t_->first_fall_to(thermal().T_sub); }
+
+BumpedDisk::BumpedDisk(std::unique_ptr<GasDisk> smooth, double amplitude, double r0,
+                       double width)
+    : GasDisk(smooth->star(), smooth->thermal()),
+      smooth_(std::move(smooth)),
+      amplitude_(amplitude),
+      r0_(r0),
+      width_(width),
+      name_(std::string(smooth_->name()) + " with a Gaussian bump") {
+  set_alpha_profile(smooth_->alpha_profile());
+}
+
+double BumpedDisk::sigma_g(double r) const {
+  const double x = (r - r0_) / width_;
+  return smooth_->sigma_g(r) * (1.0 + amplitude_ * std::exp(-0.5 * x * x));
+}
+
+double BumpedDisk::mass_between(double r1, double r2) const {
+  // the bump's share, A int Sigma_smooth exp(-x^2/2) 2 pi r dr: 4-point Gauss-Legendre on
+  // pieces <= w/4 long (the Gaussian is smooth on that scale), only within 8 w of r0
+  const double lo = std::max(r1, r0_ - 8.0 * width_),
+               hi = std::min(r2, r0_ + 8.0 * width_);
+  double bump = 0.0;
+  if (hi > lo) {
+    constexpr double kX[4] = {-0.8611363115940526, -0.3399810435848563,
+                              0.3399810435848563, 0.8611363115940526};
+    constexpr double kW[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                              0.3478548451374538};
+    const int pieces = std::max(1, int(std::ceil((hi - lo) / (0.25 * width_))));
+    const double h = (hi - lo) / pieces;
+    for (int k = 0; k < pieces; ++k)
+      for (int j = 0; j < 4; ++j) {
+        const double r = lo + h * (k + 0.5 * (1.0 + kX[j]));
+        const double x = (r - r0_) / width_;
+        bump += 0.5 * h * kW[j] * smooth_->sigma_g(r) * std::exp(-0.5 * x * x) * 2.0 *
+                kPi * r;
+      }
+  }
+  return smooth_->mass_between(r1, r2) + amplitude_ * bump;
+}
+
 std::unique_ptr<GasDisk> make_disk(const DiskParams& params) {
   const GasProfile& g = params.profile;
+  std::unique_ptr<GasDisk> disk;
   if (g.kind == GasProfile::Kind::kLbp74)
-    return std::make_unique<Lbp74Disk>(params.star, params.thermal, g.m_disk, g.r_c,
+    disk = std::make_unique<Lbp74Disk>(params.star, params.thermal, g.m_disk, g.r_c,
                                        g.gamma);
-  return std::make_unique<PowerLawDisk>(params.star, params.thermal, g.sigma_1au, g.p);
+  else if (g.kind == GasProfile::Kind::kTable)
+    disk = std::make_unique<TableDisk>(params.star, params.thermal, g.sigma_table,
+                                       g.t_table);
+  else
+    disk = std::make_unique<PowerLawDisk>(params.star, params.thermal, g.sigma_1au, g.p);
+  disk->set_alpha_profile(params.alpha);
+  if (g.bump_amplitude != 0.0)
+    disk = std::make_unique<BumpedDisk>(std::move(disk), g.bump_amplitude, g.bump_r0,
+                                        g.bump_width);
+  return disk;
 }
 
 std::vector<double> dlnp_dlnr_centres(const GasDisk& disk, const Grid& grid,

@@ -1,13 +1,17 @@
 #pragma once
 //! The gas disk (spec §1): stellar parameters, the initial or static surface density
-//! profile, and the thermal structure that follows from the temperature power law.
-//! Everything cgs. Profiles are virtual (PowerLawDisk, Lbp74Disk); the thermal structure,
-//! midplane density, mean free path and pressure are common to all profiles.
+//! profile, and the thermal structure that follows from the temperature power law (or a
+//! table). Everything cgs. Profiles are virtual (PowerLawDisk, Lbp74Disk, TableDisk, and
+//! a Gaussian bump on either of the first two, BumpedDisk); the thermal structure,
+//! midplane density, mean free path and pressure follow from sigma_g(r) and
+//! temperature(r) the same way for all of them, and alpha(r) from an AlphaProfile.
 #include <memory>
 #include <string_view>
 #include <vector>
 
+#include "disk/alpha_profile.hpp"
 #include "disk/gas_defaults.hpp"
+#include "disk/radial_table.hpp"
 
 namespace panoptic {
 
@@ -23,7 +27,7 @@ struct ThermalParams {
   double q = gas_defaults::kQ;                 //!< T ∝ r^-q
   double T_floor = gas_defaults::kTFloor;      //!< [K]
   double mu = gas_defaults::kMu;               //!< mean molecular weight
-  double alpha = gas_defaults::kAlpha;         //!< Shakura-Sunyaev alpha
+  double alpha = gas_defaults::kAlpha;         //!< Shakura-Sunyaev alpha (plateau)
   double sigma_mol = gas_defaults::kSigmaMol;  //!< molecular cross section [cm^2]
   double T_sub = gas_defaults::kTSub;          //!< ice sublimation temperature [K]
 };
@@ -43,10 +47,14 @@ class GasDisk {
 
   const Star& star() const { return star_; }
   const ThermalParams& thermal() const { return th_; }
-  double alpha() const { return th_.alpha; }
+  //! The radial profile of alpha (constant by default: thermal().alpha everywhere).
+  void set_alpha_profile(AlphaProfile profile) { alpha_profile_ = std::move(profile); }
+  const AlphaProfile& alpha_profile() const { return alpha_profile_; }
+  //! Shakura-Sunyaev alpha at r [-] (spec §1.5): the one alpha of D_g, nu, V_g and h_d.
+  double alpha(double r) const { return alpha_profile_.at(r, th_.alpha); }
 
   //! T = T_1au (L/L_sun)^(1/4) (r/au)^-q, floored at T_floor [K] (spec §1.3).
-  double temperature(double r) const;
+  virtual double temperature(double r) const;
   //! Isothermal sound speed sqrt(k_B T / (mu m_H)) [cm s^-1] (spec §1.3).
   double c_s(double r) const;
   //! Mean thermal speed sqrt(8/pi) c_s [cm s^-1] (spec §1.3).
@@ -57,7 +65,8 @@ class GasDisk {
   double v_k(double r) const;
   //! Pressure scale height c_s / Omega_K [cm] (spec §1.3).
   double h_g(double r) const;
-  //! Turbulent viscosity = gas diffusivity alpha c_s H [cm^2 s^-1] (spec §1.5, Sc = 1).
+  //! Turbulent viscosity = gas diffusivity alpha(r) c_s H [cm^2 s^-1] (spec §1.5,
+  //! Sc = 1).
   double nu(double r) const;
   //! Midplane density Sigma / (sqrt(2 pi) H) [g cm^-3] (spec §1.3).
   double rho_mid(double sigma_g, double r) const;
@@ -69,11 +78,12 @@ class GasDisk {
   //! warmer than T_sub everywhere (T_floor > T_sub, or q = 0 and T > T_sub), 0 when it
   //! is colder everywhere (q = 0), NaN when T rises outward (q < 0: ice inside silicate,
   //! which the model does not describe; validate_scene refuses it with the snow line on).
-  double r_snow() const;
+  virtual double r_snow() const;
 
  private:
   Star star_;
   ThermalParams th_;
+  AlphaProfile alpha_profile_;
 };
 
 //! Sigma_g = sigma_1au (r/au)^-p: MMSN for sigma_1au = 1700, p = 1.5 (spec §1.2 A).
@@ -84,6 +94,10 @@ class PowerLawDisk : public GasDisk {
   std::string_view name() const override { return "powerlaw"; }
   double sigma_g(double r) const override;
   double mass_between(double r1, double r2) const override;
+
+  //! sigma_1au [g cm^-2] that puts the gas mass m [g] between r1 and r2 [cm] on a power
+  //! law of index p (disk.sigma_norm = "mass").
+  static double sigma_1au_for_mass(double m, double p, double r1, double r2);
 
  private:
   double sigma_1au_, p_;
@@ -104,15 +118,65 @@ class Lbp74Disk : public GasDisk {
   double m_disk_, r_c_, gamma_;
 };
 
+//! Sigma_g(r) and T(r) from tables (disk.model = "table"), log-log interpolated; the
+//! pressure, its gradient (eta, spec §1.4) and the snow line (§1.7) follow from them.
+//! ThermalParams' T_1au, q and T_floor are not used.
+class TableDisk : public GasDisk {
+ public:
+  TableDisk(const Star& star, const ThermalParams& th,
+            std::shared_ptr<const RadialTable> sigma,
+            std::shared_ptr<const RadialTable> temperature)
+      : GasDisk(star, th), sigma_(std::move(sigma)), t_(std::move(temperature)) {}
+  std::string_view name() const override { return "table"; }
+  double sigma_g(double r) const override { return (*sigma_)(r); }
+  double mass_between(double r1, double r2) const override {
+    return sigma_->annulus_integral(r1, r2);
+  }
+  double temperature(double r) const override { return (*t_)(r); }
+  //! The innermost radius where the table's T falls to T_sub (0, +inf as for the power
+  //! law: colder, warmer everywhere).
+  double r_snow() const override;
+
+ private:
+  std::shared_ptr<const RadialTable> sigma_, t_;
+};
+
+//! A Gaussian bump (A > 0) or gap (-1 < A < 0) on a smooth profile:
+//! Sigma_g = Sigma_smooth(r) [1 + A exp(-(r - r0)^2 / (2 w^2))], the pressure maximum
+//! that traps dust (Pinilla et al. 2012; Dullemond et al. 2018). Same star, temperature
+//! and alpha as the smooth disk.
+class BumpedDisk : public GasDisk {
+ public:
+  BumpedDisk(std::unique_ptr<GasDisk> smooth, double amplitude, double r0, double width);
+  std::string_view name() const override { return name_; }
+  double sigma_g(double r) const override;
+  //! The smooth disk's closed form plus the bump's share, by Gauss-Legendre quadrature
+  //! on pieces a quarter of the width long.
+  double mass_between(double r1, double r2) const override;
+  double temperature(double r) const override { return smooth_->temperature(r); }
+  double r_snow() const override { return smooth_->r_snow(); }
+
+ private:
+  std::unique_ptr<GasDisk> smooth_;
+  double amplitude_, r0_, width_;
+  std::string name_;
+};
+
 //! The initial (or static) surface density profile of the gas (spec §1.2).
 struct GasProfile {
-  enum class Kind { kPowerLaw, kLbp74 };
+  enum class Kind { kPowerLaw, kLbp74, kTable };
   Kind kind = Kind::kPowerLaw;
   double sigma_1au = 1700.0;  //!< power law: Sigma_g at 1 au [g cm^-2]
   double p = 1.5;             //!< power law: Sigma_g ∝ r^-p
   double m_disk = 0.0;        //!< LBP: disk mass [g]
   double r_c = 0.0;           //!< LBP: characteristic radius [cm]
   double gamma = 1.0;         //!< LBP: viscosity index
+  std::shared_ptr<const RadialTable> sigma_table;  //!< table: Sigma_g(r) [g cm^-2]
+  std::shared_ptr<const RadialTable> t_table;      //!< table: T(r) [K]
+  //! Gaussian bump on a power law or LBP profile (amplitude 0: none)
+  double bump_amplitude = 0.0;  //!< A [-], > -1
+  double bump_r0 = 0.0;         //!< centre [cm]
+  double bump_width = 0.0;      //!< w [cm]
 };
 
 //! Everything a gas disk is built from, in cgs (src/model/scene_to_physics.hpp fills it
@@ -121,9 +185,11 @@ struct DiskParams {
   Star star;
   ThermalParams thermal;
   GasProfile profile;
+  AlphaProfile alpha;
 };
 
-//! Builds the disk of `params`: a PowerLawDisk or an Lbp74Disk.
+//! Builds the disk of `params`: a PowerLawDisk, an Lbp74Disk or a TableDisk, in a
+//! BumpedDisk when the profile has a bump, with the alpha profile of `params`.
 std::unique_ptr<GasDisk> make_disk(const DiskParams& params);
 
 //! dlnP/dlnr at cell centres from the pressure of `sigma_g` [per cell]: centred

@@ -59,7 +59,7 @@ std::vector<StaticField> Simulation::static_fields() const {
     cs[i] = disk_->c_s(r);
     om[i] = disk_->omega_k(r);
     hg[i] = disk_->h_g(r);
-    alpha[i] = disk_->alpha();
+    alpha[i] = disk_->alpha(r);
   }
   std::vector<double> r_mon;
   for (const auto& mon : monitors_) r_mon.push_back(mon.r_au);

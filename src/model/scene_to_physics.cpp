@@ -3,31 +3,72 @@
 #include <stdexcept>
 
 #include "src/core/units.hpp"
+#include "src/model/disk_tables.hpp"
 
 namespace panoptic {
+
+namespace {
+
+// disk.alpha_profile (spec §1.5 with a radial profile)
+AlphaProfile alpha_profile_from_config(const Config& cfg) {
+  AlphaProfile a;
+  const std::string& kind = cfg.str("disk.alpha_profile");
+  if (kind == "gaussian") {
+    a.kind = AlphaProfile::Kind::kGaussian;
+    a.amplitude = cfg.real("disk.alpha_bump_amplitude");
+    a.r0 = cfg.real("disk.alpha_bump_r_au") * units::kAu;
+    a.width = cfg.real("disk.alpha_bump_width_au") * units::kAu;
+  } else if (kind == "table") {
+    a.kind = AlphaProfile::Kind::kTable;
+    a.table = read_disk_table(cfg, "disk.alpha_file", {"r_au", "alpha"}, {1.0})[0];
+  }
+  return a;
+}
+
+}  // namespace
 
 DiskParams disk_params_from_config(const Config& cfg) {
   DiskParams d;
   d.star = {cfg.real("star.mass_msun") * units::kMsun,
             cfg.real("star.luminosity_lsun") * units::kLsun};
   ThermalParams& th = d.thermal;
-  th.T_1au = cfg.real("disk.T_1au");
-  th.q = cfg.real("disk.q");
-  th.T_floor = cfg.real("disk.T_floor");
+  const std::string& model = cfg.str("disk.model");
+  if (model != "table") {
+    th.T_1au = cfg.real("disk.T_1au");
+    th.q = cfg.real("disk.q");
+    th.T_floor = cfg.real("disk.T_floor");
+  }
   th.mu = cfg.real("disk.mu");
-  th.alpha = cfg.real("disk.alpha");
+  if (cfg.str("disk.alpha_profile") != "table") th.alpha = cfg.real("disk.alpha");
   th.sigma_mol = cfg.real("disk.sigma_mol");
   th.T_sub = cfg.real("disk.T_sub");
+  d.alpha = alpha_profile_from_config(cfg);
   GasProfile& g = d.profile;
-  if (cfg.str("disk.model") == "lbp") {
+  if (model == "lbp") {
     g.kind = GasProfile::Kind::kLbp74;
     g.m_disk = cfg.real("disk.m_disk_msun") * units::kMsun;
     g.r_c = cfg.real("disk.r_c_au") * units::kAu;
     g.gamma = cfg.real("disk.gamma");
+  } else if (model == "table") {
+    g.kind = GasProfile::Kind::kTable;
+    const auto t = read_disk_table(cfg, "disk.table_file",
+                                   {"r_au", "sigma_g_gcm2", "T_K"}, {1.0, 1.0});
+    g.sigma_table = t[0];
+    g.t_table = t[1];
   } else {
     g.kind = GasProfile::Kind::kPowerLaw;
-    g.sigma_1au = cfg.real("disk.sigma_1au");
     g.p = cfg.real("disk.p");
+    g.sigma_1au =
+        cfg.str("disk.sigma_norm") == "mass"
+            ? PowerLawDisk::sigma_1au_for_mass(cfg.real("disk.m_gas_msun") * units::kMsun,
+                                               g.p, cfg.real("grid.r_in_au") * units::kAu,
+                                               cfg.real("grid.r_out_au") * units::kAu)
+            : cfg.real("disk.sigma_1au");
+  }
+  if (model != "table" && cfg.str("disk.sigma_bump") == "gaussian") {
+    g.bump_amplitude = cfg.real("disk.sigma_bump_amplitude");
+    g.bump_r0 = cfg.real("disk.sigma_bump_r_au") * units::kAu;
+    g.bump_width = cfg.real("disk.sigma_bump_width_au") * units::kAu;
   }
   return d;
 }

@@ -5,9 +5,40 @@
 #include <string>
 
 #include "src/core/error.hpp"
+#include "src/core/units.hpp"
 #include "src/model/scene_to_physics.hpp"
 
 namespace panoptic {
+namespace {
+
+// alpha(r) within the bounds of disk.alpha (src/scene/keys_gas.cpp says why) at every
+// radius: the extreme of a Gaussian profile, every row of a table. The tables are read
+// here (disk_params_from_config), so that `panoptic check` finds a bad file.
+void validate_alpha_profile(const Config& cfg) {
+  constexpr double kMin = 1e-8, kMax = 1.0;
+  const DiskParams d = disk_params_from_config(cfg);
+  const AlphaProfile& a = d.alpha;
+  if (a.kind == AlphaProfile::Kind::kGaussian) {
+    const double extreme = d.thermal.alpha * (1.0 + a.amplitude);
+    if (extreme < kMin || extreme > kMax)
+      cfg.fail("disk.alpha_bump_amplitude",
+               "makes alpha = disk.alpha (1 + A) = " + num(extreme) +
+                   " at the centre of the profile, outside [" + num(kMin) + ", " +
+                   num(kMax) + "]; make the bump or dip shallower");
+  } else if (a.kind == AlphaProfile::Kind::kTable) {
+    for (std::size_t i = 0; i < a.table->values().size(); ++i) {
+      const double v = a.table->values()[i];
+      if (v < kMin || v > kMax)
+        cfg.fail("disk.alpha_file",
+                 "row " + std::to_string(i + 1) + " (r = " +
+                     num(a.table->r()[i] / units::kAu) + " au) has alpha = " + num(v) +
+                     ", outside [" + num(kMin) + ", " + num(kMax) +
+                     "] (below 1e-8 molecular viscosity would dominate); fix the row");
+    }
+  }
+}
+
+}  // namespace
 
 void validate_scene(const Config& cfg) {
   const double r_in = cfg.real("grid.r_in_au"), r_out = cfg.real("grid.r_out_au");
@@ -85,7 +116,9 @@ void validate_scene(const Config& cfg) {
       cfg.fail(key,
                "needs growth.enabled = true (conversion depends on the particles); "
                "turn growth on or this channel off");
-  if (cfg.flag("snowline.enabled") && cfg.real("disk.q") < 0.0)
+  validate_alpha_profile(cfg);
+  if (cfg.flag("snowline.enabled") && cfg.str("disk.model") != "table" &&
+      cfg.real("disk.q") < 0.0)
     cfg.fail("disk.q",
              "< 0 makes the temperature rise outward, so ice would lie inside silicate; "
              "the snow line of spec §1.7 needs T falling outward: set disk.q >= 0 or "

@@ -546,7 +546,7 @@ TEST(Config, ReferenceTomlListsEveryKey) {
       EXPECT_NE(text.find("[" + spec.unit + "]"), std::string::npos) << text;
     }
   }
-  EXPECT_NE(ref.find("(one of: powerlaw, lbp)"), std::string::npos);
+  EXPECT_NE(ref.find("(one of: powerlaw, lbp, table)"), std::string::npos);
 }
 
 TEST(Config, ReferenceTomlLoadsAsTheDefaults) {
