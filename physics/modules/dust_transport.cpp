@@ -16,7 +16,8 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
                              const GasColumn& gas, const ViscousStencil* viscous,
                              const StokesModel& stokes, DustTransportOptions options,
                              double sigma_scale, double dust_mass)
-    : layout_(layout),
+    : CellRangeForm(grid.n_cells()),
+      layout_(layout),
       grid_(grid),
       gas_(gas),
       viscous_(viscous),
@@ -240,11 +241,6 @@ void DustTransport::declare_pattern(PatternBuilder& p) const {
   }
 }
 
-void DustTransport::add_rhs(double t, std::span<const double> y,
-                            std::span<double> ydot) const {
-  add_rhs_cells(t, y, ydot, 0, grid_.n_cells());
-}
-
 // Cells [lo, hi) are fed by the faces lo..hi (face f: between cells f - 1 and f; face n,
 // the outer edge, carries nothing, spec §6.3).
 void DustTransport::add_rhs_cells(double, std::span<const double> y,
@@ -266,11 +262,6 @@ void DustTransport::add_rhs_cells(double, std::span<const double> y,
     if (!monitor_slot_.empty() && monitor_slot_[f] >= 0)
       ydot[layout_.global_index(monitor_slot_[f])] -= flows[0] / mass_unit_;
   }
-}
-
-void DustTransport::add_jacobian(double t, std::span<const double> y,
-                                 JacobianValues& jac) const {
-  add_jacobian_cells(t, y, jac, 0, grid_.n_cells());
 }
 
 void DustTransport::add_jacobian_cells(double, std::span<const double> y,

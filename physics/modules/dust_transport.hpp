@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "disk/gas_column.hpp"
+#include "physics/modules/cell_range_form.hpp"
 #include "physics/stokes_model.hpp"
-#include "src/solver/physics_module.hpp"
 #include "src/solver/state_layout.hpp"
 
 namespace panoptic {
@@ -43,7 +43,7 @@ struct DustTransportOptions {
   bool limited = false;
 };
 
-class DustTransport : public PhysicsModule {
+class DustTransport : public CellRangeForm<DustTransport> {
  public:
   //! Registers Sigma_d (cell) and m_out_dust (global). `viscous` is null for static gas.
   //! `sigma_scale` [g cm^-2] sets CVODE's absolute tolerance scale; `dust_mass` [g] is
@@ -70,14 +70,11 @@ class DustTransport : public PhysicsModule {
 
   std::string_view name() const override { return "dust_transport"; }
   void declare_pattern(PatternBuilder& pattern) const override;
-  void add_rhs(double t, std::span<const double> y,
-               std::span<double> ydot) const override;
-  void add_jacobian(double t, std::span<const double> y,
-                    JacobianValues& jac) const override;
+  //! The range form of add_rhs() and add_jacobian() (CellRangeForm).
   void add_rhs_cells(double t, std::span<const double> y, std::span<double> ydot, int lo,
-                     int hi) const override;
+                     int hi) const;
   void add_jacobian_cells(double t, std::span<const double> y, JacobianValues& jac,
-                          int lo, int hi) const override;
+                          int lo, int hi) const;
 
   int sigma_slot() const { return slot_; }
   int m_out_slot() const { return g_out_; }

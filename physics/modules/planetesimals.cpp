@@ -12,7 +12,8 @@ Planetesimals::Planetesimals(StateLayout& layout, const ParticleCodec& codec,
                              const std::vector<physics::Species>& species,
                              const physics::GrowthOptions& growth,
                              PlanetesimalOptions options, double sigma_scale)
-    : layout_(layout),
+    : CellRangeForm(layout.n_cells()),
+      layout_(layout),
       codec_(codec),
       gas_(gas),
       stokes_(stokes),
@@ -78,11 +79,6 @@ void sinks(const ParticleCodec& codec, int coag_slot, int si_slot, const T* yc,
 
 }  // namespace
 
-void Planetesimals::add_rhs(double t, std::span<const double> y,
-                            std::span<double> ydot) const {
-  add_rhs_cells(t, y, ydot, 0, layout_.n_cells());
-}
-
 void Planetesimals::add_rhs_cells(double, std::span<const double> y,
                                   std::span<double> ydot, int lo, int hi) const {
   const int nv = layout_.n_cell_vars();
@@ -94,11 +90,6 @@ void Planetesimals::add_rhs_cells(double, std::span<const double> y,
     sinks(codec_, coag_slot_, si_slot_, yc, coag, si, out, nv);
     for (int k = 0; k < nv; ++k) ydot[layout_.index(i, k)] += out[k];
   }
-}
-
-void Planetesimals::add_jacobian(double t, std::span<const double> y,
-                                 JacobianValues& jac) const {
-  add_jacobian_cells(t, y, jac, 0, layout_.n_cells());
 }
 
 void Planetesimals::add_jacobian_cells(double, std::span<const double> y,

@@ -4,6 +4,7 @@
 //! instability criterion (the laws: physics/planetesimal_criteria.hpp). The sinks
 //! conserve the particle properties: dSigma_d = -Sdot, dQ = -(Q/Sigma_d) Sdot (spec
 //! §6.2). Owns one Sigma_pl variable per channel that is on.
+#include "physics/modules/cell_range_form.hpp"
 #include "physics/modules/porous_growth.hpp"
 
 namespace panoptic {
@@ -23,7 +24,7 @@ struct PlanetesimalOptions {
   double width_dex = 0.1;   //!< half width of the smooth thresholds [dex]
 };
 
-class Planetesimals : public PhysicsModule {
+class Planetesimals : public CellRangeForm<Planetesimals> {
  public:
   //! Registers sigma_pl_coag and/or sigma_pl_si.
   Planetesimals(StateLayout& layout, const ParticleCodec& codec, const CellGas& gas,
@@ -33,14 +34,11 @@ class Planetesimals : public PhysicsModule {
 
   std::string_view name() const override { return "planetesimals"; }
   void declare_pattern(PatternBuilder& pattern) const override;
-  void add_rhs(double t, std::span<const double> y,
-               std::span<double> ydot) const override;
-  void add_jacobian(double t, std::span<const double> y,
-                    JacobianValues& jac) const override;
+  //! The range form of add_rhs() and add_jacobian() (CellRangeForm).
   void add_rhs_cells(double t, std::span<const double> y, std::span<double> ydot, int lo,
-                     int hi) const override;
+                     int hi) const;
   void add_jacobian_cells(double t, std::span<const double> y, JacobianValues& jac,
-                          int lo, int hi) const override;
+                          int lo, int hi) const;
 
   //! Take the growth rates of the coagulation channel from the growth module's memo
   //! (same state, same options: the same numbers, computed once per RHS).

@@ -159,7 +159,8 @@ PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const Cell
                            const GrowthStokes& stokes,
                            const std::vector<physics::Species>& species,
                            physics::GrowthOptions options, double sigma_scale)
-    : layout_(layout),
+    : CellRangeForm(layout.n_cells()),
+      layout_(layout),
       codec_(codec),
       gas_(gas),
       stokes_(stokes),
@@ -263,11 +264,6 @@ void PorousGrowth::declare_pattern(PatternBuilder& p) const {
     }
 }
 
-void PorousGrowth::add_rhs(double t, std::span<const double> y,
-                           std::span<double> ydot) const {
-  add_rhs_cells(t, y, ydot, 0, layout_.n_cells());
-}
-
 void PorousGrowth::add_rhs_cells(double, std::span<const double> y,
                                  std::span<double> ydot, int lo, int hi) const {
   for (int i = lo; i < hi; ++i) {
@@ -276,11 +272,6 @@ void PorousGrowth::add_rhs_cells(double, std::span<const double> y,
     ydot[layout_.index(i, codec_.qm_slot)] += dqm;
     if (codec_.qphi_slot >= 0) ydot[layout_.index(i, codec_.qphi_slot)] += dqphi;
   }
-}
-
-void PorousGrowth::add_jacobian(double t, std::span<const double> y,
-                                JacobianValues& jac) const {
-  add_jacobian_cells(t, y, jac, 0, layout_.n_cells());
 }
 
 void PorousGrowth::add_jacobian_cells(double, std::span<const double> y,

@@ -15,8 +15,8 @@
 
 #include "disk/gas_column.hpp"
 #include "physics/growth_rates.hpp"
+#include "physics/modules/cell_range_form.hpp"
 #include "physics/stokes_model.hpp"
-#include "src/solver/physics_module.hpp"
 #include "src/solver/state_layout.hpp"
 
 namespace panoptic {
@@ -134,7 +134,7 @@ class GrowthStokes : public StokesModel {
   physics::DragLaw law_;
 };
 
-class PorousGrowth : public PhysicsModule {
+class PorousGrowth : public CellRangeForm<PorousGrowth> {
  public:
   //! Registers Q_m and, with porosity, Q_phi; fills their slots into `codec`.
   PorousGrowth(StateLayout& layout, ParticleCodec& codec, const CellGas& gas,
@@ -143,14 +143,11 @@ class PorousGrowth : public PhysicsModule {
 
   std::string_view name() const override { return "porous_growth"; }
   void declare_pattern(PatternBuilder& pattern) const override;
-  void add_rhs(double t, std::span<const double> y,
-               std::span<double> ydot) const override;
-  void add_jacobian(double t, std::span<const double> y,
-                    JacobianValues& jac) const override;
+  //! The range form of add_rhs() and add_jacobian() (CellRangeForm).
   void add_rhs_cells(double t, std::span<const double> y, std::span<double> ydot, int lo,
-                     int hi) const override;
+                     int hi) const;
   void add_jacobian_cells(double t, std::span<const double> y, JacobianValues& jac,
-                          int lo, int hi) const override;
+                          int lo, int hi) const;
 
   //! The rates of cell `cell` at state y, for output and tests.
   physics::ParticleRates<double> rates(int cell, std::span<const double> y) const;

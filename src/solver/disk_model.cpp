@@ -17,13 +17,6 @@ SparsityPattern build_pattern(
   return SparsityPattern(builder);
 }
 
-void check_range(int lo, int hi, int n) {
-  if (lo < 0 || hi > n || lo > hi)
-    throw std::invalid_argument("DiskModel: cell range [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + ") is not within [0, " +
-                                std::to_string(n) + ")");
-}
-
 //! Index of the first non-finite entry, or -1.
 long first_non_finite(std::span<const double> v) {
   for (std::size_t i = 0; i < v.size(); ++i)
@@ -39,46 +32,20 @@ DiskModel::DiskModel(std::shared_ptr<const StateLayout> layout,
       modules_(std::move(modules)),
       pattern_(build_pattern(*layout_, modules_)) {}
 
-// The whole model is its cell-range form on every cell: that clears every row (every
-// column), and each module's add_*_cells on [0, n) is its add_rhs / add_jacobian.
 void DiskModel::rhs(double t, std::span<const double> y, std::span<double> ydot) const {
-  rhs_cells(t, y, ydot, 0, layout_->n_cells());
+  std::fill(ydot.begin(), ydot.end(), 0.0);
+  for (const auto& m : modules_)
+    if (!active_ || active_(m->name())) m->add_rhs(t, y, ydot);
 }
 
 void DiskModel::jacobian(double t, std::span<const double> y,
                          std::span<double> values) const {
-  jacobian_cells(t, y, values, 0, layout_->n_cells());
-}
-
-void DiskModel::rhs_cells(double t, std::span<const double> y, std::span<double> ydot,
-                          int lo, int hi) const {
-  // The rows the modules' range loops write besides their own (the faces' other cells)
-  // are cleared too; a module without a range loop (the default) writes every row, and
-  // the rows outside [lo - 1, hi + 1) then hold sums of earlier calls: undefined.
-  const int n = layout_->n_cells();
-  check_range(lo, hi, n);
-  std::fill(ydot.begin() + layout_->index(std::max(0, lo - 1), 0),
-            ydot.begin() + layout_->index(std::min(n, hi + 1), 0), 0.0);
-  std::fill(ydot.begin() + layout_->index(n, 0), ydot.end(), 0.0);  // the globals
-  for (const auto& m : modules_)
-    if (!active_ || active_(m->name())) m->add_rhs_cells(t, y, ydot, lo, hi);
-}
-
-void DiskModel::jacobian_cells(double t, std::span<const double> y,
-                               std::span<double> values, int lo, int hi) const {
-  // The modules write the columns of the cells lo - 2 .. hi + 1 (a face reads two cells
-  // each side) and of the globals: those are cleared, in the pattern's column order.
-  const int n = layout_->n_cells();
-  check_range(lo, hi, n);
-  const auto cp = pattern_.col_ptr();
-  std::fill(values.begin() + cp[layout_->index(std::max(0, lo - 2), 0)],
-            values.begin() + cp[layout_->index(std::min(n, hi + 2), 0)], 0.0);
-  std::fill(values.begin() + cp[layout_->index(n, 0)], values.end(), 0.0);
+  std::fill(values.begin(), values.end(), 0.0);
   JacobianValues jac(pattern_, values);
   for (const auto& m : modules_) {
     if (active_ && !active_(m->name())) continue;
     try {
-      m->add_jacobian_cells(t, y, jac, lo, hi);
+      m->add_jacobian(t, y, jac);
     } catch (const PatternMiss& e) {
       throw std::logic_error("module " + std::string(m->name()) +
                              " wrote the Jacobian entry d(" + layout_->describe(e.row) +

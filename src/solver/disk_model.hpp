@@ -34,13 +34,6 @@ class DiskModel {
   void rhs(double t, std::span<const double> y, std::span<double> ydot) const;
   //! values (in pattern order) = dF/dy.
   void jacobian(double t, std::span<const double> y, std::span<double> values) const;
-  //! rhs() on the rows of cells [lo, hi) and the globals (PhysicsModule::add_rhs_cells);
-  //! the other rows of ydot are left undefined.
-  void rhs_cells(double t, std::span<const double> y, std::span<double> ydot, int lo,
-                 int hi) const;
-  //! jacobian() on the same rows; the other values are left undefined.
-  void jacobian_cells(double t, std::span<const double> y, std::span<double> values,
-                      int lo, int hi) const;
 
   //! For the CVODE callbacks: 0 = ok, 1 = recoverable (non-finite result: CVODE retries
   //! with a smaller step), -1 = unrecoverable (message kept in last_error()).

@@ -4,9 +4,13 @@
 //! scene's model is the sum of the modules it turns on and a process that is off costs
 //! nothing.
 //!
-//! NEW_PROCESS: derive from PhysicsModule, register its variables with the StateLayout in
-//! its constructor, declare its snapshot fields (output_fields) and budget terms, and add
-//! its line to the registry (src/model/module_registry.cpp; src/model/README.md).
+//! NEW_PROCESS: derive from PhysicsModule (a process whose terms are local to a cell or
+//! a face: from CellRangeForm, physics/modules/cell_range_form.hpp), register its
+//! variables with the StateLayout in its constructor, declare its snapshot fields
+//! (output_fields) and budget terms (budget_terms), add its line to the registry
+//! (src/model/module_registry.cpp), its keys to a scene key table (src/scene/keys_*.cpp)
+//! and its cross-key rules to src/model/scene_validation.cpp (physics/README.md, Adding a
+//! physical process).
 #include <functional>
 #include <span>
 #include <string>
@@ -59,16 +63,6 @@ class PhysicsModule {
   virtual void add_jacobian(double t, std::span<const double> y,
                             JacobianValues& jac) const = 0;
 
-  //! add_rhs() on the rows of the cells [lo, hi) and of the global variables fed through
-  //! the faces lo..hi; rows of other cells may be written too (the default computes them
-  //! all). For integrators that step part of the grid on its own (block-local time
-  //! stepping, tests/bench/bench_lts.cpp); a module with local or face-by-face terms
-  //! overrides it to skip the rest.
-  virtual void add_rhs_cells(double t, std::span<const double> y, std::span<double> ydot,
-                             int lo, int hi) const {
-    (void)lo, (void)hi;
-    add_rhs(t, y, ydot);
-  }
   //! The mass-budget terms this module books (a sink of dust: what it has removed, at
   //! state y, in g), after the built-in ones in Simulation::budget_terms(); none by
   //! default. The module is built only when its process is on, so its terms are written
@@ -77,12 +71,6 @@ class PhysicsModule {
   //! The snapshot fields this module owns (OutputField), written after every snapshot;
   //! none by default.
   virtual std::vector<OutputField> output_fields() const { return {}; }
-  //! add_jacobian() on the same rows as add_rhs_cells().
-  virtual void add_jacobian_cells(double t, std::span<const double> y,
-                                  JacobianValues& jac, int lo, int hi) const {
-    (void)lo, (void)hi;
-    add_jacobian(t, y, jac);
-  }
 };
 
 }  // namespace panoptic

@@ -27,11 +27,11 @@
 // state at every snapshot, where the blocks restart anyway.
 //
 // Each block's right-hand side and Jacobian are those of the whole-disk model on the
-// block's cells only (DiskModel::rhs_cells / jacobian_cells, which evaluate the modules
-// on a cell range; checked against the whole model's rows for every block at set-up), so
-// the wall time is that of the scheme, with the bookkeeping of this prototype (dense
-// output of every step, ghost interpolation). The cost is also reported as block steps
-// and cell-steps (steps x cells) against the coupled run's.
+// block's cells only (CellRangeModel, tests/bench/cell_range_model.hpp, which evaluates
+// the modules on a cell range; checked against the whole model's rows for every block at
+// set-up), so the wall time is that of the scheme, with the bookkeeping of this prototype
+// (dense output of every step, ghost interpolation). The cost is also reported as block
+// steps and cell-steps (steps x cells) against the coupled run's.
 //
 // Usage: build/tests/bench_lts [--block B ...] [--overlap V ...] [--sub K ...]
 //            [--tol-scale X] [--overlap-atol F] [--extrapolate] [--chase]
@@ -91,6 +91,7 @@
 #include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
 #include "src/solver/grid.hpp"
+#include "tests/bench/cell_range_model.hpp"
 #include "tests/bench/fiducial_outcome.hpp"
 
 using namespace panoptic;
@@ -164,8 +165,8 @@ class BlockView : public PhysicsModule {
             std::vector<long> full_index, int eval_lo, int eval_hi);
   //! --book-faces: books, as the block's variables `compact` (past its whole-disk ones),
   //! what cell face - 1 gains of each transported variable `slots` through face `face`
-  //! in the block's view (rows of DiskModel::rhs_cells on the empty range [face, face):
-  //! that face alone). `prescribed` (--flux-coupling, the block's outer face): the
+  //! in the block's view (rows of CellRangeModel::rhs_cells on the empty range [face,
+  //! face): that face alone). `prescribed` (--flux-coupling, the block's outer face): the
   //! block's cell face - 1 receives instead what the outer block booked through that face
   //! (the time derivative of its dense output), and books that.
   void add_booking(int face, const std::vector<int>& slots,
@@ -202,6 +203,7 @@ class BlockView : public PhysicsModule {
   std::vector<Booking> bookings_;
   mutable std::vector<double> face_ydot_, face_jac_;
   const DiskModel& full_;
+  bench::CellRangeModel cells_;
   const Coupler& coupler_;
   int block_, eval_lo_, eval_hi_;
   std::vector<long> full_index_;
@@ -308,6 +310,7 @@ class Coupler {
 BlockView::BlockView(const DiskModel& full, const Coupler& coupler, int block,
                      std::vector<long> full_index, int eval_lo, int eval_hi)
     : full_(full),
+      cells_(full),
       coupler_(coupler),
       block_(block),
       eval_lo_(eval_lo),
@@ -367,11 +370,11 @@ void BlockView::fill(double t, std::span<const double> y) const {
 void BlockView::add_rhs(double t, std::span<const double> y,
                         std::span<double> ydot) const {
   fill(t, y);
-  full_.rhs_cells(t, y_full_, ydot_full_, eval_lo(), eval_hi());
+  cells_.rhs_cells(t, y_full_, ydot_full_, eval_lo(), eval_hi());
   for (std::size_t k = 0; k < full_index_.size(); ++k)
     ydot[k] += ydot_full_[full_index_[k]];
   for (const Booking& bk : bookings_) {
-    full_.rhs_cells(t, y_full_, face_ydot_, bk.face, bk.face);
+    cells_.rhs_cells(t, y_full_, face_ydot_, bk.face, bk.face);
     for (std::size_t k = 0; k < bk.row.size(); ++k) {
       const auto gain = bk.prescribed
                             ? coupler_.prescribed_gain(block_, static_cast<int>(k), t)
@@ -389,11 +392,11 @@ void BlockView::add_rhs(double t, std::span<const double> y,
 void BlockView::add_jacobian(double t, std::span<const double> y,
                              JacobianValues& jac) const {
   fill(t, y);
-  full_.jacobian_cells(t, y_full_, jac_full_, eval_lo(), eval_hi());
+  cells_.jacobian_cells(t, y_full_, jac_full_, eval_lo(), eval_hi());
   for (const auto& e : entries_)
     if (e.pos >= 0) jac.add(e.row, e.col, jac_full_[e.pos]);
   for (const Booking& bk : bookings_) {
-    full_.jacobian_cells(t, y_full_, face_jac_, bk.face, bk.face);
+    cells_.jacobian_cells(t, y_full_, face_jac_, bk.face, bk.face);
     for (const auto& d : bk.d)
       for (const auto& e : d)
         jac.add(e.row, e.col,
@@ -458,7 +461,7 @@ Coupler::Coupler(Simulation& sim, int block_size, int overlap, const Coupling& h
     }
     bl->freeze();
     // Its own cells and overlap, and the face inside its owned cells, which feeds the
-    // globals it owns with no overlap (DiskModel::rhs_cells: cells [lo, hi) read the
+    // globals it owns with no overlap (CellRangeModel::rhs_cells: cells [lo, hi) read the
     // faces lo..hi).
     auto view =
         std::make_unique<BlockView>(full, *this, static_cast<int>(bi), b.full_index,
@@ -546,7 +549,7 @@ void Coupler::set_ghost_targets(double t0, double t1, bool fresh) {
   t1_ = t1;
 }
 
-//! The block's rows from DiskModel::rhs_cells/jacobian_cells equal the whole model's
+//! The block's rows from CellRangeModel::rhs_cells/jacobian_cells equal the whole model's
 //! (at the initial state and a state with growth under way): a block evaluates only its
 //! cells, and must still get every row it owns.
 void view_check(const DiskModel& full, const Block& b, const BlockView& view,
@@ -557,9 +560,10 @@ void view_check(const DiskModel& full, const Block& b, const BlockView& view,
   std::vector<double> f(y.size()), fc(y.size());
   std::vector<double> j(full.pattern().nnz()), jc(j.size());
   full.rhs(0.0, y, f);
-  full.rhs_cells(0.0, y, fc, view.eval_lo(), view.eval_hi());
+  const bench::CellRangeModel cells(full);
+  cells.rhs_cells(0.0, y, fc, view.eval_lo(), view.eval_hi());
   full.jacobian(0.0, y, j);
-  full.jacobian_cells(0.0, y, jc, view.eval_lo(), view.eval_hi());
+  cells.jacobian_cells(0.0, y, jc, view.eval_lo(), view.eval_hi());
   std::vector<char> mine(y.size(), 0);
   for (long k : b.full_index) {
     mine[k] = 1;

@@ -15,6 +15,7 @@
 #include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/disk_model.hpp"
+#include "tests/bench/cell_range_model.hpp"
 #include "tests/unit/support/evolved_state.hpp"
 
 using namespace panoptic;
@@ -404,7 +405,7 @@ TEST(DiskModelActive, SplitModulesSumToTheWholeModel) {
   EXPECT_GT(transport_nonzero, 60);
 }
 
-// DiskModel::rhs_cells / jacobian_cells (block-local time stepping, bench_lts): on the
+// CellRangeModel (block-local time stepping, tests/bench/cell_range_model.hpp): on the
 // rows of cells [lo, hi), and of each global whose row reads only cells in [lo, hi), the
 // same bits as the whole model's rhs() and jacobian(), at a state with growing,
 // compacting and converting cells, across the snow line and a pebble-flux monitor.
@@ -414,6 +415,7 @@ TEST(DiskModelCells, RangeRowsEqualTheWholeModel) {
   Simulation sim(load_scene(file, sets));
   const std::vector<double> y = evolved_state(sim, 300.0);
   const DiskModel& model = sim.model();
+  const bench::CellRangeModel cells(model);
   const StateLayout& L = model.layout();
   const int n = L.n_cells();
   const auto cp = model.pattern().col_ptr();
@@ -445,8 +447,8 @@ TEST(DiskModelCells, RangeRowsEqualTheWholeModel) {
                                {5, 45},
                                {30, 31}}) {
     std::vector<double> f(y.size(), 7.0), j(model.pattern().nnz(), 7.0);  // stale junk
-    model.rhs_cells(0.0, y, f, lo, hi);
-    model.jacobian_cells(0.0, y, j, lo, hi);
+    cells.rhs_cells(0.0, y, f, lo, hi);
+    cells.jacobian_cells(0.0, y, j, lo, hi);
     int rows = 0;
     for (long r = 0; r < L.size(); ++r)
       if (in_range(r, lo, hi)) {
@@ -468,6 +470,6 @@ TEST(DiskModelCells, RangeRowsEqualTheWholeModel) {
   // sublimation, the monitors), not only the whole-grid range
   EXPECT_GT(globals_checked, L.n_global_vars());
   std::vector<double> f(y.size());
-  EXPECT_THROW(model.rhs_cells(0.0, y, f, 5, 4), std::invalid_argument);
-  EXPECT_THROW(model.rhs_cells(0.0, y, f, 0, n + 1), std::invalid_argument);
+  EXPECT_THROW(cells.rhs_cells(0.0, y, f, 5, 4), std::invalid_argument);
+  EXPECT_THROW(cells.rhs_cells(0.0, y, f, 0, n + 1), std::invalid_argument);
 }
