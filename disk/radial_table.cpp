@@ -120,7 +120,7 @@ std::vector<std::vector<double>> read_csv_columns(const std::filesystem::path& f
   if (!in)
     throw std::invalid_argument("cannot open " + file.string() +
                                 " (no such file, or not readable); give the path of a "
-                                "CSV file, relative to the scene file");
+                                "CSV file, relative to the scene file that sets the key");
   std::vector<int> column_of;  // for each of `names`, its column in the file
   std::vector<std::vector<double>> out(names.size());
   std::string line;

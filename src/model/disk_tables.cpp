@@ -10,7 +10,13 @@ namespace panoptic {
 std::filesystem::path scene_relative_path(const Config& cfg, const std::string& key) {
   const std::filesystem::path p = cfg.str(key);
   if (p.is_absolute()) return p;
-  return cfg.file().parent_path() / p;
+  const std::string& origin = cfg.where(key);
+  if (origin == "--set") return p;  // a path on the command line: as the shell sees it
+  // "file:line:col": relative to the file that set the key
+  std::string file = origin;
+  for (int k = 0; k < 2; ++k)
+    if (const auto colon = file.rfind(':'); colon != std::string::npos) file.erase(colon);
+  return std::filesystem::path(file).parent_path() / p;
 }
 
 std::vector<std::shared_ptr<const RadialTable>> read_disk_table(
@@ -22,7 +28,7 @@ std::vector<std::shared_ptr<const RadialTable>> read_disk_table(
           std::string h;
           for (const auto& c : columns) h += (h.empty() ? "" : ",") + c;
           return h;
-        }() + "), relative to the scene file");
+        }() + "), relative to the scene file that sets the key");
   const auto path = scene_relative_path(cfg, key);
   std::vector<std::shared_ptr<const RadialTable>> out;
   try {

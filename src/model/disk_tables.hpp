@@ -1,8 +1,9 @@
 #pragma once
 //! The radial tables a scene's disk reads (disk.table_file: Sigma_g and T;
-//! disk.alpha_file: alpha): the file named by the key, relative to the scene file, read
-//! and checked (disk/radial_table.hpp) and required to cover the grid; every problem is a
-//! ConfigError naming the key, its value, what is wrong and the fix.
+//! disk.alpha_file: alpha): the file named by the key, relative to the scene file that
+//! sets it (or the current directory from --set), read and checked
+//! (disk/radial_table.hpp) and required to cover the grid; every problem is a ConfigError
+//! naming the key, its value, what is wrong and the fix.
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,7 +14,8 @@
 namespace panoptic {
 
 //! The path of the file named by `key`: as written when absolute, else relative to the
-//! directory of the scene file.
+//! directory of the scene file that set the key (Config::where), or to the current
+//! directory when a --set gave it (a path on the command line).
 std::filesystem::path scene_relative_path(const Config& cfg, const std::string& key);
 
 //! The tables of the CSV file named by `key`: its first column r_au (`columns[0]`), one

@@ -12,11 +12,9 @@ namespace panoptic {
 namespace {
 
 // alpha(r) within the bounds of disk.alpha (src/scene/keys_gas.cpp says why) at every
-// radius: the extreme of a Gaussian profile, every row of a table. The tables are read
-// here (disk_params_from_config), so that `panoptic check` finds a bad file.
-void validate_alpha_profile(const Config& cfg) {
+// radius: the extreme of a Gaussian profile, every row of a table.
+void validate_alpha_profile(const Config& cfg, const DiskParams& d) {
   constexpr double kMin = 1e-8, kMax = 1.0;
-  const DiskParams d = disk_params_from_config(cfg);
   const AlphaProfile& a = d.alpha;
   if (a.kind == AlphaProfile::Kind::kGaussian) {
     const double extreme = d.thermal.alpha * (1.0 + a.amplitude);
@@ -36,6 +34,33 @@ void validate_alpha_profile(const Config& cfg) {
                      "] (below 1e-8 molecular viscosity would dominate); fix the row");
     }
   }
+}
+
+// One snow line (spec §1.7): ice outside the innermost radius where T falls to T_sub, so
+// a table's T may not rise above T_sub again further out on the grid (as disk.q < 0 is
+// refused for the power law).
+void validate_table_snow_line(const Config& cfg, const DiskParams& d) {
+  const RadialTable& t = *d.profile.t_table;
+  const double r_snow = t.first_fall_to(d.thermal.T_sub);
+  const double r_out = cfg.real("grid.r_out_au") * units::kAu;
+  for (std::size_t i = 0; i < t.r().size(); ++i)
+    if (t.r()[i] > r_snow && t.r()[i] <= r_out && t.values()[i] > d.thermal.T_sub)
+      cfg.fail("disk.table_file",
+               "row " + std::to_string(i + 1) + " (r = " + num(t.r()[i] / units::kAu) +
+                   " au) has T = " + num(t.values()[i]) +
+                   " K, above disk.T_sub = " + num(d.thermal.T_sub) +
+                   " K outside the snow line at " + num(r_snow / units::kAu) +
+                   " au: the snow line of spec §1.7 needs T falling outward across "
+                   "T_sub; fix the table or set snowline.enabled = false");
+}
+
+// The radial structure of the disk: its tables are read here (disk_params_from_config),
+// so that `panoptic check` finds a bad file.
+void validate_radial_structure(const Config& cfg) {
+  const DiskParams d = disk_params_from_config(cfg);
+  validate_alpha_profile(cfg, d);
+  if (d.profile.kind == GasProfile::Kind::kTable && cfg.flag("snowline.enabled"))
+    validate_table_snow_line(cfg, d);
 }
 
 }  // namespace
@@ -116,7 +141,7 @@ void validate_scene(const Config& cfg) {
       cfg.fail(key,
                "needs growth.enabled = true (conversion depends on the particles); "
                "turn growth on or this channel off");
-  validate_alpha_profile(cfg);
+  validate_radial_structure(cfg);
   if (cfg.flag("snowline.enabled") && cfg.str("disk.model") != "table" &&
       cfg.real("disk.q") < 0.0)
     cfg.fail("disk.q",

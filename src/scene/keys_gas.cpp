@@ -58,7 +58,9 @@ std::vector<KeySpec> disk_keys() {
                 -2.0, false, 2.0, true)),
       when({disk_model("table")},
            text("disk.table_file",
-                "table: CSV file (path relative to the scene file) with the header "
+                "table: CSV file (relative to the scene file that sets it; from --set, "
+                "to the "
+                "current directory) with the header "
                 "r_au,sigma_g_gcm2,T_K and one row per radius, covering the grid; "
                 "Sigma_g and T are interpolated as power laws between rows")),
       when({smooth_model},
@@ -112,7 +114,9 @@ std::vector<KeySpec> disk_keys() {
                     "width w of the alpha bump or dip (standard deviation)")),
       when({one_of("disk.alpha_profile", {"table"})},
            text("disk.alpha_file",
-                "alpha_profile = \"table\": CSV file (path relative to the scene file) "
+                "alpha_profile = \"table\": CSV file (relative to the scene file that "
+                "sets it; from --set, to "
+                "the current directory) "
                 "with the header r_au,alpha, covering the grid; log-log interpolated")),
       positive("disk.sigma_mol", literal(gas_defaults::kSigmaMol), "cm^2",
                "molecular cross section (§1.6)"),

@@ -63,6 +63,38 @@ TEST_F(DiskTables, ReadsTheFilesRelativeToTheScene) {
   EXPECT_NEAR(disk->alpha(10.0 * units::kAu), 1e-4, 1e-16);
 }
 
+TEST_F(DiskTables, ASetPathIsRelativeToTheCurrentDirectory) {
+  // a path on the command line reads as the shell sees it, not from the scene's folder
+  const auto from_here = std::filesystem::relative(dir_ / "tables/disk.csv");
+  write("scene.toml", "[disk]\nmodel = \"table\"\n");
+  const std::vector<std::string> set{"disk.table_file=\"" + from_here.string() + "\""};
+  const Config cfg = load_scene(dir_ / "scene.toml", set);
+  validate_scene(cfg);
+  EXPECT_NEAR(make_disk(disk_params_from_config(cfg))->sigma_g(units::kAu), 1700.0, 1e-9);
+  // and "tables/disk.csv", which the scene file reads from its own folder
+  // (ReadsTheFilesRelativeToTheScene), is not found from the current directory
+  ASSERT_FALSE(std::filesystem::exists("tables/disk.csv"));
+  const std::vector<std::string> from_scene{"disk.table_file=\"tables/disk.csv\""};
+  const std::string msg = config_error_message(
+      [&] { validate_scene(load_scene(dir_ / "scene.toml", from_scene)); }, "--set");
+  EXPECT_NE(msg.find("cannot open tables/disk.csv"), std::string::npos) << msg;
+}
+
+TEST_F(DiskTables, RefusesATemperatureRisingAcrossTheSnowLine) {
+  // T falls to T_sub = 170 K inside 2 au and rises above it again at 50 au: two snow
+  // lines
+  write("warm.csv",
+        "r_au,sigma_g_gcm2,T_K\n0.5,100,400\n2,100,150\n50,100,200\n"
+        "500,100,100\n");
+  expect_error("[disk]\nmodel = \"table\"\ntable_file = \"warm.csv\"\n",
+               {"disk.table_file", "row 3 (r = 50 au) has T = 200 K", "above disk.T_sub",
+                "snowline.enabled = false"});
+  // with the snow line off the same table is a disk
+  scene(
+      "[disk]\nmodel = \"table\"\ntable_file = \"warm.csv\"\n"
+      "[snowline]\nenabled = false\n");
+}
+
 TEST_F(DiskTables, RefusesBadTables) {
   expect_error("[disk]\nmodel = \"table\"\n",
                {"disk.table_file", "names no file", "r_au,sigma_g_gcm2,T_K"});
