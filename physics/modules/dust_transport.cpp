@@ -20,8 +20,8 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
       layout_(layout),
       grid_(grid),
       gas_(gas),
-      viscous_(viscous),
       stokes_(stokes),
+      flux_(grid, disk, gas, viscous, options),
       opt_(options),
       mass_unit_(dust_mass) {
   // No >= 0 constraint on Sigma_d: CVODE lets a constrained component dip below zero by
@@ -48,36 +48,6 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
                                   "initial dust mass on the grid",
                                   sigma_scale * area_total / dust_mass, false});
   transported_.push_back(slot_);
-
-  const int n = grid.n_cells();
-  two_pi_r_.resize(n);
-  two_pi_rc_.resize(n);
-  dr_.resize(n);
-  d_gas_.resize(n);
-  hr2vk_.resize(n);
-  eta_vk_static_.resize(n);
-  ln_cs_omega_.resize(n);
-  for (int i = 0; i < n; ++i)
-    ln_cs_omega_[i] = std::log(disk.c_s(grid.r_c(i)) * disk.omega_k(grid.r_c(i)));
-  for (int f = 0; f < n; ++f) {
-    const double r = grid.r_f(f);
-    const double hr = disk.h_g(r) / r;
-    two_pi_r_[f] = 2.0 * units::kPi * r;
-    two_pi_rc_[f] = 2.0 * units::kPi * grid.r_c(f);
-    dr_[f] = f > 0 ? grid.r_c(f) - grid.r_c(f - 1) : grid.r_c(0) - grid.r_f(0);
-    d_gas_[f] = disk.nu(r);  // Schmidt number 1 (spec §1.5)
-    hr2vk_[f] = hr * hr * disk.v_k(r);
-    // eta v_K (spec §1.4), the gradient from the two neighbouring centres (at the inner
-    // face: the gradient of the first interior face).
-    const int a = f > 0 ? f - 1 : 0;
-    const double dlnp =
-        (std::log(gas.static_sigma[a + 1]) - std::log(gas.static_sigma[a]) +
-         ln_cs_omega_[a + 1] - ln_cs_omega_[a]) /
-        grid.dlnr_centres(a + 1);
-    eta_vk_static_[f] = pressure_gradient_eta(hr2vk_[f], dlnp);
-  }
-  if (gas.evolves() && viscous == nullptr)
-    throw std::logic_error("DustTransport: evolving gas needs the viscous stencil");
 }
 
 void DustTransport::set_snowline(StateLayout& layout, int face, double f_ice,
@@ -91,13 +61,9 @@ void DustTransport::set_snowline(StateLayout& layout, int face, double f_ice,
 
 int DustTransport::add_booked_mass(StateLayout& layout, const std::string& name,
                                    const std::string& what) const {
-  // the absolute tolerance of Sigma_d over a disk of radius r_out, in these units
-  const double r_out = grid_.r_f(grid_.n_cells());
-  return layout.add_global_var(
-      {name, "initial dust mass",
-       what + ", in units of the initial dust mass on the grid",
-       layout.cell_var(slot_).abs_scale * units::kPi * r_out * r_out / mass_unit_,
-       false});
+  return layout.add_global_var(booked_mass_info(name, what,
+                                                layout.cell_var(slot_).abs_scale,
+                                                grid_.r_f(grid_.n_cells()), mass_unit_));
 }
 
 int DustTransport::add_monitor(StateLayout& layout, int face) {
@@ -128,25 +94,8 @@ void DustTransport::received_flows(int f, const T* flows, T* received, T& sublim
 
 template <class T>
 T DustTransport::velocity(int f, const T* ya, const T* yb, const T& st) const {
-  using std::log;
   const int a = f > 0 ? f - 1 : 0;
-  const T one_plus_st2 = 1.0 + st * st;
-  T eta_vk;
-  if (gas_.evolves()) {
-    const T dlnp = (log(gas_.sigma(a + 1, yb)) - log(gas_.sigma(a, ya)) +
-                    (ln_cs_omega_[a + 1] - ln_cs_omega_[a])) /
-                   grid_.dlnr_centres(a + 1);
-    eta_vk = pressure_gradient_eta(hr2vk_[f], dlnp);
-  } else {
-    eta_vk = T(eta_vk_static_[f]);
-  }
-  T v = -2.0 * st * eta_vk / one_plus_st2;  // spec §6.1 drift
-  if (gas_.evolves()) {
-    // v_g = F_g / Sigma_g on the face (spec §1.2, §6.1)
-    const T sg_a = gas_.sigma(a, ya), sg_b = gas_.sigma(a + 1, yb);
-    v += viscous_->face_velocity(f, sg_a, sg_b) / one_plus_st2;
-  }
-  return v;
+  return flux_.velocity(f, gas_.sigma(a, ya), gas_.sigma(a + 1, yb), st);
 }
 
 template <class T>
@@ -163,53 +112,15 @@ int DustTransport::face_flows(int f, const T* ya, const T* yb, std::span<const d
   const T st =
       f > 0 ? T(sqrt(stokes_.St(f - 1, ya) * stokes_.St(f, yb))) : stokes_.St(0, ya);
   const T v = opt_.drift ? velocity(f, ya, yb, st) : T(0.0);
-  if (f == 0) {  // open inner boundary: outflow with the upwind state, never inflow
-    for (int k = 0; k < nt; ++k)
-      flows[k] = value_of(v) < 0.0 ? T(two_pi_rc_[0] * v * ya[transported_[k]]) : T(0.0);
-    return -1;
-  }
-  const bool from_left = value_of(v) > 0.0;
-  T diff_coef(0.0), sg_a(0.0), sg_b(0.0);
-  if (opt_.diffusion) {
-    sg_a = gas_.sigma(f - 1, ya);
-    sg_b = gas_.sigma(f, yb);
-    // -D_d Sigma_g,f / dr, D_d = D_g/(1+St^2) (spec §6.1), Sigma_g,f geometric mean
-    diff_coef = -d_gas_[f] / (1.0 + st * st) * sqrt(sg_a * sg_b) / dr_[f];
-  }
-  // Upwind advection of r Sigma (the mass per unit radius / 2 pi) rather than of Sigma:
-  // first order either way, but this keeps the steady drift profile Sigma ∝ 1/(r v)
-  // exact on the grid, so the pebble flux through a face has no truncation error there.
-  const double two_pi_r_up = 2.0 * units::kPi * grid_.r_c(from_left ? f - 1 : f);
-  // Limited scheme: the far upwind cell (behind the upwind one), if on the grid.
-  const int n = grid_.n_cells();
-  const int far = !opt_.limited || !opt_.drift ? -1
-                  : from_left                  ? (f >= 2 ? f - 2 : -1)
-                                               : (f + 1 < n ? f + 1 : -1);
+  const T sg_a = gas_.sigma(f > 0 ? f - 1 : 0, ya), sg_b = gas_.sigma(f > 0 ? f : 1, yb);
+  const T diff_coef =
+      f > 0 && opt_.diffusion ? flux_.diffusion_coefficient(f, st, sg_a, sg_b) : T(0.0);
+  const int far = f > 0 ? flux_.far_cell(f, value_of(v) > 0.0) : -1;
   for (int k = 0; k < nt; ++k) {
     const int s = transported_[k];
-    T flow = two_pi_r_up * v * (from_left ? ya[s] : yb[s]);
-    if (d_far) d_far[k] = 0.0;
-    if (far >= 0) {
-      // MUSCL with the van Leer limiter on q = 2 pi r_c y (the variable the first-order
-      // scheme upwinds): face value q_up + psi(a, b)/2, a = q_up - q_far, b = q_down -
-      // q_up, psi = 2ab/(a + b) for ab > 0, else 0 (van Leer 1977; LeVeque 2002 §6.9).
-      const T q_up = two_pi_r_up * (from_left ? ya[s] : yb[s]);
-      const T q_down = 2.0 * units::kPi * grid_.r_c(from_left ? f : f - 1) *
-                       (from_left ? yb[s] : ya[s]);
-      const double q_far = two_pi_rc_[far] * y[layout_.index(far, s)];
-      const T a = q_up - q_far, b = q_down - q_up;
-      if (value_of(a) * value_of(b) > 0.0) {
-        const T ab = a + b;
-        flow += v * (a * b / ab);
-        // d(face value)/d q_far = -(1/2) d psi/d a = -b^2/(a + b)^2
-        if (d_far) {
-          const double bv = value_of(b), abv = value_of(ab);
-          d_far[k] = -value_of(v) * bv * bv / (abv * abv) * two_pi_rc_[far];
-        }
-      }
-    }
-    if (opt_.diffusion) flow += two_pi_r_[f] * diff_coef * (yb[s] / sg_b - ya[s] / sg_a);
-    flows[k] = flow;
+    flows[k] = flux_.flow(f, v, diff_coef, sg_a, sg_b, ya[s], yb[s], far,
+                          far >= 0 ? y[layout_.index(far, s)] : 0.0,
+                          d_far ? &d_far[k] : nullptr);
   }
   return far;
 }

@@ -23,6 +23,7 @@
 
 #include "disk/gas_column.hpp"
 #include "physics/modules/cell_range_form.hpp"
+#include "physics/modules/dust_face_flux.hpp"
 #include "physics/stokes_model.hpp"
 #include "src/solver/state_layout.hpp"
 
@@ -31,17 +32,6 @@ namespace panoptic {
 class GasDisk;
 class Grid;
 struct ViscousStencil;
-
-struct DustTransportOptions {
-  bool drift = true;      //!< advection by v_r (drift, and gas motion when it evolves)
-  bool diffusion = true;  //!< turbulent diffusion
-  //! Second-order advection (MUSCL, van Leer 1977 limiter): the face value of r Sigma
-  //! (and of each passenger's r Q) is reconstructed from the upwind cell with the limited
-  //! slope of the upwind cell, psi(a, b) = 2ab/(a + b) for ab > 0, else 0, a the
-  //! difference behind the upwind cell, b the one across the face. The inner face and the
-  //! faces whose far upwind cell lies off the grid stay first order.
-  bool limited = false;
-};
 
 class DustTransport : public CellRangeForm<DustTransport> {
  public:
@@ -121,8 +111,8 @@ class DustTransport : public CellRangeForm<DustTransport> {
   const StateLayout& layout_;
   const Grid& grid_;
   const GasColumn& gas_;
-  const ViscousStencil* viscous_;
   const StokesModel& stokes_;
+  DustFaceFlux flux_;  //!< the flux operator (spec §6.1), shared with SizeDistribution
   DustTransportOptions opt_;
   int slot_ = -1, g_out_ = -1;
   double mass_unit_ = 1.0;
@@ -131,11 +121,6 @@ class DustTransport : public CellRangeForm<DustTransport> {
   std::vector<int>
       monitor_slot_;  //!< per face: global slot of its cumulative flow, or -1
   double f_ice_ = 0.0;
-  // Per face (0..n-1): 2 pi r_f, centre spacing, gas diffusivity, (H/r)^2 v_K, and the
-  // static eta v_K (used when the gas does not evolve).
-  std::vector<double> two_pi_r_, dr_, d_gas_, hr2vk_, eta_vk_static_;
-  std::vector<double> two_pi_rc_;    //!< per cell: 2 pi r_c, for the upwinded r Sigma
-  std::vector<double> ln_cs_omega_;  //!< per cell: ln(c_s Omega_K), for ln P
 };
 
 }  // namespace panoptic
