@@ -10,8 +10,10 @@
 //! the outer face closed. Every function is a template on the scalar type, so that the
 //! callers' Jacobians stay exact by AD.
 #include <cmath>
+#include <functional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "disk/gas_column.hpp"
 #include "disk/pressure_gradient.hpp"
@@ -19,6 +21,7 @@
 #include "src/core/autodiff.hpp"
 #include "src/core/units.hpp"
 #include "src/solver/grid.hpp"
+#include "src/solver/physics_module.hpp"
 #include "src/solver/state_layout.hpp"
 
 namespace panoptic {
@@ -45,6 +48,18 @@ inline VarInfo booked_mass_info(const std::string& name, const std::string& what
   return {name, "initial dust mass",
           what + ", in units of the initial dust mass on the grid",
           sigma_abs_scale * units::kPi * r_out * r_out / mass_unit, false};
+}
+
+//! The budget terms of the dust that leaves through the open inner face (m_out_inner) and
+//! sublimates at the snow line (m_sublimated), from their booked masses [g] at state y.
+inline std::vector<BudgetTerm> outflow_budget_terms(
+    std::function<double(std::span<const double>)> out,
+    std::function<double(std::span<const double>)> sublimated) {
+  return {{"m_out_inner", "through r_in", "cumulative dust mass that left through r_in",
+           true, std::move(out)},
+          {"m_sublimated", "sublimated",
+           "cumulative ice that sublimated at the snow line (spec §6.3)", true,
+           std::move(sublimated)}};
 }
 
 class DustFaceFlux {
@@ -105,14 +120,33 @@ class DustFaceFlux {
                                         : (f + 1 < n ? f + 1 : -1);
   }
 
-  //! The mass-like flow 2 pi r_f F of one transported quantity through face f, its
-  //! values qa, qb in the cells of the stencil (f - 1 and f; at f = 0: 0 and 1), v the
-  //! face velocity, diff_coef = diffusion_coefficient() (used with options().diffusion),
-  //! sg_a, sg_b as there; far = far_cell() and q_far the value in it (limited scheme);
-  //! d_far (if not null): d flow / d q_far.
+  //! What the flows through face f share: the velocity, the diffusion coefficient and
+  //! the far upwind cell of the limited scheme.
   template <class T>
-  T flow(int f, const T& v, const T& diff_coef, const T& sg_a, const T& sg_b, const T& qa,
-         const T& qb, int far, double q_far, double* d_far) const {
+  struct FaceTerms {
+    T v;          //!< velocity() (0 without drift) [cm s^-1]
+    T diff_coef;  //!< diffusion_coefficient() (0 without diffusion, and at f = 0)
+    int far;      //!< far_cell() (-1 at f = 0)
+  };
+  //! The terms of face f for the face Stokes number st and the gas of its cells, sg_a
+  //! and sg_b (cells max(f - 1, 0) and max(f, 1)).
+  template <class T>
+  FaceTerms<T> face_terms(int f, const T& st, const T& sg_a, const T& sg_b) const {
+    const T v = opt_.drift ? velocity(f, sg_a, sg_b, st) : T(0.0);
+    const T diff_coef =
+        f > 0 && opt_.diffusion ? diffusion_coefficient(f, st, sg_a, sg_b) : T(0.0);
+    return {v, diff_coef, f > 0 ? far_cell(f, value_of(v) > 0.0) : -1};
+  }
+
+  //! The mass-like flow 2 pi r_f F of one transported quantity through face f with the
+  //! face's terms `t`, its values qa, qb in the cells of the stencil (f - 1 and f; at
+  //! f = 0: 0 and 1), sg_a and sg_b as for face_terms(), and its value q_far in the far
+  //! upwind cell t.far (limited scheme); d_far (if not null): d flow / d q_far.
+  template <class T>
+  T flow(int f, const FaceTerms<T>& t, const T& sg_a, const T& sg_b, const T& qa,
+         const T& qb, double q_far, double* d_far) const {
+    const T& v = t.v;
+    const int far = t.far;
     if (d_far) *d_far = 0.0;
     if (f == 0)  // open inner boundary: outflow with the upwind state, never inflow
       return value_of(v) < 0.0 ? T(two_pi_rc_[0] * v * qa) : T(0.0);
@@ -142,7 +176,7 @@ class DustFaceFlux {
         }
       }
     }
-    if (opt_.diffusion) out += two_pi_r_[f] * diff_coef * (qb / sg_b - qa / sg_a);
+    if (opt_.diffusion) out += two_pi_r_[f] * t.diff_coef * (qb / sg_b - qa / sg_a);
     return out;
   }
 

@@ -111,18 +111,15 @@ int DustTransport::face_flows(int f, const T* ya, const T* yb, std::span<const d
   // travelling waves at the growth front (tests/bench/results/performance_log.md).
   const T st =
       f > 0 ? T(sqrt(stokes_.St(f - 1, ya) * stokes_.St(f, yb))) : stokes_.St(0, ya);
-  const T v = opt_.drift ? velocity(f, ya, yb, st) : T(0.0);
   const T sg_a = gas_.sigma(f > 0 ? f - 1 : 0, ya), sg_b = gas_.sigma(f > 0 ? f : 1, yb);
-  const T diff_coef =
-      f > 0 && opt_.diffusion ? flux_.diffusion_coefficient(f, st, sg_a, sg_b) : T(0.0);
-  const int far = f > 0 ? flux_.far_cell(f, value_of(v) > 0.0) : -1;
+  const auto face = flux_.face_terms(f, st, sg_a, sg_b);
   for (int k = 0; k < nt; ++k) {
     const int s = transported_[k];
-    flows[k] = flux_.flow(f, v, diff_coef, sg_a, sg_b, ya[s], yb[s], far,
-                          far >= 0 ? y[layout_.index(far, s)] : 0.0,
+    flows[k] = flux_.flow(f, face, sg_a, sg_b, ya[s], yb[s],
+                          face.far >= 0 ? y[layout_.index(face.far, s)] : 0.0,
                           d_far ? &d_far[k] : nullptr);
   }
-  return far;
+  return face.far;
 }
 
 void DustTransport::declare_pattern(PatternBuilder& p) const {
@@ -268,11 +265,9 @@ std::vector<double> DustTransport::face_velocity(std::span<const double> y) cons
 }
 
 std::vector<BudgetTerm> DustTransport::budget_terms() const {
-  return {{"m_out_inner", "through r_in", "cumulative dust mass that left through r_in",
-           true, [this](std::span<const double> y) { return mass_out(y); }},
-          {"m_sublimated", "sublimated",
-           "cumulative ice that sublimated at the snow line (spec §6.3)", true,
-           [this](std::span<const double> y) { return mass_sublimated(y); }}};
+  return outflow_budget_terms(
+      [this](std::span<const double> y) { return mass_out(y); },
+      [this](std::span<const double> y) { return mass_sublimated(y); });
 }
 
 double DustTransport::mass_out(std::span<const double> y) const {

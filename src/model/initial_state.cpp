@@ -8,6 +8,7 @@
 #include "disk/gas_disk.hpp"
 #include "physics/modules/dust_transport.hpp"
 #include "physics/modules/porous_growth.hpp"
+#include "physics/modules/size_distribution.hpp"
 #include "src/core/error.hpp"
 #include "src/core/units.hpp"
 #include "src/model/simulation.hpp"
@@ -75,7 +76,13 @@ std::vector<double> Simulation::initial_state() const {
   const auto& L = *layout_;
   std::vector<double> y(L.size(), 0.0);
   for (int i = 0; i < grid_.n_cells(); ++i) {
-    y[L.index(i, transport_->sigma_slot())] = sigma_d0_[i];
+    if (distribution_)  // spread over the mass bins (spec §15.4)
+      distribution_->initial_cell(
+          sigma_d0_[i],
+          std::span<double>(y).subspan(L.index(i, distribution_->bin_slot(0)),
+                                       distribution_->n_bins()));
+    else
+      y[L.index(i, transport_->sigma_slot())] = sigma_d0_[i];
     if (gas_.evolves()) y[L.index(i, gas_.slot)] = gas_.static_sigma[i];
     // monomers everywhere (spec §6.4): m = m0 of the cell's species, phi = 1
     if (growth_) y[L.index(i, codec_->qm_slot)] = sigma_d0_[i] * codec_->x_lo[i];

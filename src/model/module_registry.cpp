@@ -7,6 +7,8 @@
 #include "physics/modules/dust_transport.hpp"
 #include "physics/modules/planetesimals.hpp"
 #include "physics/modules/porous_growth.hpp"
+#include "physics/modules/size_distribution.hpp"
+#include "src/core/error.hpp"
 #include "src/model/scene_to_physics.hpp"
 #include "src/solver/grid.hpp"
 
@@ -70,15 +72,49 @@ std::unique_ptr<PhysicsModule> build_planetesimals(ModuleContext& c) {
   return pl;
 }
 
+bool single_size(const Config& cfg) { return cfg.str("model.kind") == "single_size"; }
+
+// The size distribution (spec §15, model.kind = "distribution"): owns a sigma_k per mass
+// bin and cell, transported by the dust transport's flux operator, in place of the
+// single-size modules.
+std::unique_ptr<PhysicsModule> build_size_distribution(ModuleContext& c) {
+  const Config& cfg = c.cfg;
+  SizeDistributionOptions o;
+  o.m_min = cfg.real("model.m_min_g");
+  o.m_max = cfg.real("model.m_max_g");
+  o.bins_per_decade = cfg.real("model.bins_per_decade");
+  o.coagulation = cfg.flag("growth.enabled");
+  o.mrn = cfg.str("model.init") == "mrn";
+  o.a_max_init = cfg.real("model.a_max_init_um") * 1e-4;
+  o.growth = growth_options_from_config(cfg);
+  const double m_first = o.m_min > 0.0 ? o.m_min : c.species[0].m0;
+  if (m_first >= o.m_max)
+    cfg.fail("model.m_max_g", "= " + num(o.m_max) + " [g] must exceed the first bin, " +
+                                  num(m_first) +
+                                  " g (model.m_min_g, or the monomer mass); raise it");
+  auto dist = std::make_unique<SizeDistribution>(
+      c.layout, c.grid, c.disk, c.gas, c.viscous ? &c.viscous->stencil() : nullptr,
+      c.cell_gas, c.species, transport_options_from_config(cfg), o, c.sigma_d_max,
+      c.dust_mass0);
+  c.distribution = dist.get();
+  return dist;
+}
+
+// The pebble-flux monitors book global variables after every module's own.
+void finish_size_distribution(ModuleContext& c) {
+  for (PebbleMonitor& mon : c.monitors)
+    mon.global_slot = c.distribution->add_monitor(c.layout, mon.face);
+}
+
 // NEW_MODULE: one line here (build order = state layout order; a new process goes last).
 // The evaluation ranks keep the order in which the right-hand sides are summed (the
 // transport last): another order changes the last bits of every run.
-constexpr std::array<ModuleEntry, 4> kRegistry{{
+constexpr std::array<ModuleEntry, 5> kRegistry{{
     {"viscous_gas", [](const Config& cfg) { return cfg.flag("gas.evolve"); },
      build_viscous_gas, nullptr, 0},
-    {"dust_transport", [](const Config&) { return true; }, build_dust_transport,
-     finish_dust_transport, 3},
-    {"porous_growth", [](const Config& cfg) { return cfg.flag("growth.enabled"); },
+    {"dust_transport", single_size, build_dust_transport, finish_dust_transport, 3},
+    {"porous_growth",
+     [](const Config& cfg) { return single_size(cfg) && cfg.flag("growth.enabled"); },
      build_porous_growth, nullptr, 1},
     {"planetesimals",
      [](const Config& cfg) {
@@ -86,6 +122,8 @@ constexpr std::array<ModuleEntry, 4> kRegistry{{
               cfg.str("planetesimals.si") != "none";
      },
      build_planetesimals, nullptr, 2},
+    {"size_distribution", [](const Config& cfg) { return !single_size(cfg); },
+     build_size_distribution, finish_size_distribution, 3},
 }};
 
 }  // namespace

@@ -26,6 +26,7 @@ class ViscousGas;
 class DustTransport;
 class PorousGrowth;
 class Planetesimals;
+class SizeDistribution;
 namespace physics {
 struct Species;
 }  // namespace physics
@@ -56,6 +57,7 @@ struct ModuleContext {
   DustTransport* transport = nullptr;
   PorousGrowth* growth = nullptr;
   Planetesimals* planetesimals = nullptr;
+  SizeDistribution* distribution = nullptr;
 };
 
 struct ModuleEntry {

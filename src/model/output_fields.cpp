@@ -2,6 +2,7 @@
 #include <string>
 
 #include "disk/gas_disk.hpp"
+#include "physics/modules/size_distribution.hpp"
 #include "physics/stokes_model.hpp"
 #include "src/core/units.hpp"
 #include "src/io/run_output.hpp"
@@ -26,13 +27,18 @@ std::vector<OutputField> Simulation::make_output_fields() const {
                         sg[i] = gas_.sigma(i, &y[layout_->index(i, 0)]);
                       return sg;
                     }});
-  fields.push_back({"St", cells, "", "Stokes number of the dust",
-                    [this, n](std::span<const double> y) {
-                      std::vector<double> st(n);
-                      for (int i = 0; i < n; ++i)
-                        st[i] = stokes_->St(i, &y[layout_->index(i, 0)]);
-                      return st;
-                    }});
+  if (distribution_)
+    fields.push_back(
+        {"St", cells, "", "Stokes number of the mass-dominating bin",
+         [this](std::span<const double> y) { return distribution_->dominant_st(y); }});
+  else
+    fields.push_back({"St", cells, "", "Stokes number of the dust",
+                      [this, n](std::span<const double> y) {
+                        std::vector<double> st(n);
+                        for (int i = 0; i < n; ++i)
+                          st[i] = stokes_->St(i, &y[layout_->index(i, 0)]);
+                        return st;
+                      }});
   for (const BudgetTerm& term : budget_terms_)
     if (term.in_snapshots)
       fields.push_back({term.name, 0, "g", term.description,
@@ -63,7 +69,7 @@ std::vector<StaticField> Simulation::static_fields() const {
   }
   std::vector<double> r_mon;
   for (const auto& mon : monitors_) r_mon.push_back(mon.r_au);
-  return {
+  std::vector<StaticField> fields{
       {"grid", "r_c", r_c, "au", "cell centres (geometric mean of the faces)"},
       {"grid", "r_f", r_f, "au", "cell faces (log-spaced, or stretched by grid.stretch)"},
       {"grid", "area", grid_.areas(), "cm^2", "annulus area of each cell"},
@@ -76,6 +82,13 @@ std::vector<StaticField> Simulation::static_fields() const {
        "pressure-gradient parameter of the initial gas (spec §1.4)"},
       {"pebbles", "r_au", r_mon, "au",
        "radii (faces) where the pebble flux is recorded; attribute names"}};
+  if (distribution_) {  // the mass grid of /snapshots/sigma (spec §15.1)
+    fields.push_back({"grid", "m_bins", distribution_->mass_grid().m, "g",
+                      "mass of every bin of the size distribution"});
+    fields.push_back({"grid", "a_bins", distribution_->bin_radii(), "cm",
+                      "radius of every bin (compact)"});
+  }
+  return fields;
 }
 
 void Simulation::prepare_output(RunOutput& out) const {

@@ -6,6 +6,7 @@
 #include "physics/contact_mechanics.hpp"
 #include "physics/modules/dust_transport.hpp"
 #include "physics/modules/porous_growth.hpp"
+#include "physics/modules/size_distribution.hpp"
 #include "physics/stokes_model.hpp"
 #include "src/core/units.hpp"
 #include "src/model/scene_to_physics.hpp"
@@ -111,11 +112,16 @@ std::string Simulation::describe_state(long index, std::span<const double> y) co
   const double* yc = &y[L.index(i, 0)];
   std::ostringstream s;
   s.precision(4);
-  s << "r = " << grid_.r_c(i) / kAu << " au, Sigma_d = " << yc[transport_->sigma_slot()]
+  s << "r = " << grid_.r_c(i) / kAu << " au, Sigma_d = "
+    << (distribution_ ? distribution_->sigma_d(i, y) : yc[transport_->sigma_slot()])
     << " g cm^-2";
   if (gas_.evolves()) s << ", Sigma_g = " << gas_.sigma(i, yc) << " g cm^-2";
   if (growth_) s << ", m = " << codec_->mass(i, yc) << " g, phi = " << codec_->phi(yc);
-  s << ", St = " << stokes_->St(i, yc);
+  if (distribution_)
+    s << ", mass-dominating bin " << distribution_->dominant_bin(i, y)
+      << ", St = " << distribution_->dominant_st(y)[i];
+  else
+    s << ", St = " << stokes_->St(i, yc);
   return s.str();
 }
 

@@ -10,6 +10,7 @@
 #include "physics/modules/dust_transport.hpp"
 #include "physics/modules/planetesimals.hpp"
 #include "physics/modules/porous_growth.hpp"
+#include "physics/modules/size_distribution.hpp"
 #include "physics/stokes_model.hpp"
 #include "src/core/units.hpp"
 #include "src/model/initial_state.hpp"
@@ -91,6 +92,7 @@ Simulation::Simulation(const Config& cfg)
   transport_ = ctx.transport;
   growth_ = ctx.growth;
   planetesimals_ = ctx.planetesimals;
+  distribution_ = ctx.distribution;
   modules_in_build_order_ = ctx.built;
   // The dust mass budget (spec §8), in the column order of /timeseries/mass_budget. A
   // process that removes dust from Sigma_d adds its term here (BudgetTerm).
@@ -139,6 +141,7 @@ void Simulation::refresh_local_gas(std::span<const double> y) {
     v_r_gas[i] = 0.5 * (v_face[i] + v_face[i + 1]);
   }
   cell_gas_->set_pressure_and_flow(eta, v_r_gas);
+  if (distribution_) distribution_->refresh(y);
   if (growth_stokes_) growth_stokes_->forget();
   if (growth_) growth_->forget();
 }
@@ -188,7 +191,9 @@ std::vector<double> Simulation::output_times() const {
 double Simulation::dust_mass_on_grid(std::span<const double> y) const {
   double m = 0.0;
   for (int i = 0; i < grid_.n_cells(); ++i)
-    m += y[layout_->index(i, transport_->sigma_slot())] * grid_.area(i);
+    m += (distribution_ ? distribution_->sigma_d(i, y)
+                        : y[layout_->index(i, transport_->sigma_slot())]) *
+         grid_.area(i);
   return m;
 }
 

@@ -31,6 +31,7 @@ class ViscousGas;
 class PorousGrowth;
 class GrowthStokes;
 class Planetesimals;
+class SizeDistribution;
 class CellGas;
 struct ParticleCodec;
 namespace physics {
@@ -61,6 +62,10 @@ class Simulation {
   const DustTransport& transport() const { return *transport_; }
   //! The growth module, or null when growth is off.
   const PorousGrowth* growth() const { return growth_; }
+  //! The size distribution (model.kind = "distribution", spec §15), or null.
+  const SizeDistribution* distribution() const { return distribution_; }
+  //! The largest initial Sigma_d of a cell [g cm^-2].
+  double initial_sigma_d_max() const { return sigma_scale_; }
   //! The local gas the particle laws see, or null when growth is off.
   const CellGas* cell_gas() const { return cell_gas_.get(); }
 
@@ -138,6 +143,7 @@ class Simulation {
   const PorousGrowth* growth_ = nullptr;
   const GrowthStokes* growth_stokes_ = nullptr;
   const Planetesimals* planetesimals_ = nullptr;
+  const SizeDistribution* distribution_ = nullptr;
   std::vector<PebbleMonitor> monitors_;
   std::vector<BudgetTerm> budget_terms_;
   std::unique_ptr<DiskModel> model_;

@@ -55,12 +55,7 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
     }
   const int n = sim.grid().n_cells();
   t_first_.assign(n, kNaN);
-  const auto y0 = sim.initial_state();
-  const auto& L = sim.model().layout();
-  const int sd = *L.find_cell_var("sigma_d");
-  double sigma_max = 0.0;
-  for (int i = 0; i < n; ++i) sigma_max = std::max(sigma_max, y0[L.index(i, sd)]);
-  threshold_.assign(n, kFormedFraction * sigma_max);
+  threshold_.assign(n, kFormedFraction * sim.initial_sigma_d_max());
 
   for (const OutputField& f : output_fields(sim))
     out_.add_field(f.name, f.width, f.units, f.description);

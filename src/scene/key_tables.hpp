@@ -9,6 +9,7 @@
 namespace panoptic::scene_detail {
 
 std::vector<KeySpec> meta_keys();
+std::vector<KeySpec> model_keys();
 std::vector<KeySpec> star_keys();
 std::vector<KeySpec> disk_keys();
 std::vector<KeySpec> gas_keys();

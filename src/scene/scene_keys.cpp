@@ -16,16 +16,17 @@ using KeyTable = std::vector<KeySpec> (*)();
 
 // The tables in the order of params/reference.toml.
 constexpr KeyTable kTables[] = {
-    scene_detail::meta_keys,     scene_detail::star_keys,
-    scene_detail::disk_keys,     scene_detail::gas_keys,
-    scene_detail::dust_keys,     scene_detail::transport_keys,
-    scene_detail::growth_keys,   scene_detail::porosity_keys,
-    scene_detail::erosion_keys,  scene_detail::fragmentation_keys,
-    scene_detail::bouncing_keys, scene_detail::snowline_keys,
-    scene_detail::material_keys, scene_detail::planetesimals_keys,
-    scene_detail::pebbles_keys,  scene_detail::grid_keys,
-    scene_detail::solver_keys,   scene_detail::checkpoint_keys,
-    scene_detail::output_keys,   scene_detail::observe_keys,
+    scene_detail::meta_keys,       scene_detail::star_keys,
+    scene_detail::disk_keys,       scene_detail::gas_keys,
+    scene_detail::dust_keys,       scene_detail::transport_keys,
+    scene_detail::growth_keys,     scene_detail::porosity_keys,
+    scene_detail::erosion_keys,    scene_detail::fragmentation_keys,
+    scene_detail::bouncing_keys,   scene_detail::snowline_keys,
+    scene_detail::material_keys,   scene_detail::planetesimals_keys,
+    scene_detail::pebbles_keys,    scene_detail::model_keys,
+    scene_detail::grid_keys,       scene_detail::solver_keys,
+    scene_detail::checkpoint_keys, scene_detail::output_keys,
+    scene_detail::observe_keys,
 };
 
 std::vector<KeySpec> make_keys() {

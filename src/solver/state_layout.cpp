@@ -19,7 +19,7 @@ void check_constraint(const VarInfo& info) {
 int StateLayout::add_cell_var(VarInfo info) {
   if (frozen_) throw std::logic_error("StateLayout: variable added after freeze()");
   check_constraint(info);
-  if (2 * (n_cell_vars() + 1) > kMaxLocalDerivs)
+  if (!wide_cells_ && 2 * (n_cell_vars() + 1) > kMaxLocalDerivs)
     throw std::logic_error("StateLayout: raise kMaxLocalDerivs in src/core/autodiff.hpp");
   cell_vars_.push_back(std::move(info));
   return n_cell_vars() - 1;

@@ -35,6 +35,11 @@ class StateLayout {
   //! Registers a global variable; returns its global slot. Only before freeze().
   int add_global_var(VarInfo info);
   void freeze() { frozen_ = true; }
+  //! Lets a cell hold more variables than kMaxLocalDerivs / 2, the most a module can
+  //! seed as AD directions over a two-cell stencil: only for a layout whose modules seed
+  //! no whole cell state (the size distribution of spec §15, physics/modules/
+  //! size_distribution.hpp, whose cells hold a variable per mass bin).
+  void allow_wide_cells() { wide_cells_ = true; }
 
   int n_cells() const { return n_cells_; }
   int n_cell_vars() const { return static_cast<int>(cell_vars_.size()); }
@@ -65,6 +70,7 @@ class StateLayout {
  private:
   int n_cells_;
   bool frozen_ = false;
+  bool wide_cells_ = false;
   std::vector<VarInfo> cell_vars_, global_vars_;
 };
 

@@ -1,0 +1,122 @@
+#pragma once
+//! The size distribution of every cell (spec §15; issue 35): on each radial cell the dust
+//! surface density per mass bin, sigma_k [g cm^-2] on the log-spaced mass grid of
+//! physics/coagulation/mass_grid.hpp, one state variable per bin. Every bin is
+//! transported with its own Stokes number by the flux operator of the single-size model
+//! (physics/modules/dust_face_flux.hpp: the same drift, diffusion, boundaries and the
+//! booking of the mass through r_in, spec §6.1, §6.3), and coagulates in its cell by the
+//! Smoluchowski equation of physics/coagulation/ (sticking with the two-bin split,
+//! DustPy's fragmentation and cratering; spec §15.2).
+//!
+//! The coefficients of a cell (kernel, fragmentation probabilities, each bin's St) depend
+//! on the gas only (compact bins: spec §15.1 with phi = 1): they are computed once for a
+//! static gas, and for an evolving gas from the gas at each refresh() (every snapshot,
+//! Simulation::refresh_local_gas, as the single-size model's eta and v_r_gas; in between
+//! they stay those of the last refresh). The Jacobian is then exact: the engine's dense
+//! analytic block per cell, and the transport's face flows by AD over the two cells'
+//! sigma_k and Sigma_g.
+//!
+//! Not carried yet (refused by src/model/scene_validation.cpp): porous bins (psi_k), the
+//! snow line, planetesimals per bin, erosion and bouncing.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "disk/gas_column.hpp"
+#include "physics/coagulation/cell_coefficients.hpp"
+#include "physics/coagulation/smoluchowski.hpp"
+#include "physics/growth_options.hpp"
+#include "physics/modules/dust_face_flux.hpp"
+#include "src/solver/physics_module.hpp"
+#include "src/solver/state_layout.hpp"
+
+namespace panoptic {
+
+class CellGas;
+
+struct SizeDistributionOptions {
+  double m_min = 0.0;             //!< first bin [g]; 0: the monomer mass
+  double m_max = 1e5;             //!< the grid reaches the first bin at or above [g]
+  double bins_per_decade = 7.0;   //!< [-]
+  bool coagulation = true;        //!< Smoluchowski coagulation on (growth.enabled)
+  bool mrn = true;                //!< initial MRN distribution, else monomers
+  double a_max_init = 1e-4;       //!< MRN: largest initial radius [cm]
+  physics::GrowthOptions growth;  //!< drag law, turbulence, fragmentation switch
+};
+
+class SizeDistribution : public PhysicsModule {
+ public:
+  //! Registers sigma_0 ... sigma_{N-1} (cell) and m_out_dust (global). `viscous` is null
+  //! for static gas; `species` per cell (one species: no snow line yet); `sigma_scale`
+  //! [g cm^-2] sets CVODE's absolute tolerance scale of every bin; `dust_mass` [g] is
+  //! the unit of the booked masses.
+  SizeDistribution(StateLayout& layout, const Grid& grid, const GasDisk& disk,
+                   const GasColumn& gas, const ViscousStencil* viscous,
+                   const CellGas& cell_gas, const std::vector<physics::Species>& species,
+                   DustTransportOptions transport, SizeDistributionOptions options,
+                   double sigma_scale, double dust_mass);
+
+  const physics::coagulation::MassGrid& mass_grid() const { return engine_.grid(); }
+  int n_bins() const { return n_bins_; }
+  int bin_slot(int k) const { return slot0_ + k; }
+  //! Radius of every bin [cm] (compact, the species of cell 0).
+  std::vector<double> bin_radii() const;
+
+  //! The initial bins of a cell holding sigma_d [g cm^-2]: MRN, sigma_k ∝ a_k^(1/2) for
+  //! a_k <= a_max_init (n(a) ∝ a^-3.5 per log bin, as DustPy), or all in the first bin.
+  void initial_cell(double sigma_d, std::span<double> bins) const;
+  double sigma_d(int cell, std::span<const double> y) const;  //!< sum of the bins
+  //! The mass-dominating bin of the cell: argmax sigma_k (DustPy's a_rep).
+  int dominant_bin(int cell, std::span<const double> y) const;
+  //! St of the mass-dominating bin of every cell.
+  std::vector<double> dominant_st(std::span<const double> y) const;
+  //! Recomputes the coefficients from the gas at state y (evolving gas; no-op static).
+  void refresh(std::span<const double> y) const;
+
+  //! Books the cumulative dust mass that crosses face `face` inward (spec §8) in a new
+  //! global variable in units of mass_unit(); face 0 is m_out_dust. Before set-up ends.
+  int add_monitor(StateLayout& layout, int face);
+  int m_out_slot() const { return g_out_; }
+  double mass_unit() const { return mass_unit_; }
+  double mass_out(std::span<const double> y) const;  //!< through r_in [g]
+  //! Dust mass flow through every face, positive outward [g s^-1]; n_cells + 1 entries.
+  std::vector<double> mass_flow(std::span<const double> y) const;
+
+  std::string_view name() const override { return "size_distribution"; }
+  //! m_out_inner and m_sublimated (0: no snow line yet) [g].
+  std::vector<BudgetTerm> budget_terms() const override;
+  //! sigma (r, m), sigma_d, the mass-dominating bin's m and a, mdot_d.
+  std::vector<OutputField> output_fields() const override;
+  //! Transport: the face flows of every bin; coagulation: the dense block of every cell.
+  void declare_pattern(PatternBuilder& pattern) const override;
+  void add_rhs(double t, std::span<const double> y,
+               std::span<double> ydot) const override;
+  void add_jacobian(double t, std::span<const double> y,
+                    JacobianValues& jac) const override;
+
+ private:
+  //! The coefficients and St of every bin of `cell` from its gas.
+  void build_cell(int cell, const physics::LocalGas& gas) const;
+  //! The rows a face flow of bin k feeds: the two cells, m_out_dust (f = 0), a monitor.
+  void face_rows(int f, int k, std::vector<long>& rows) const;
+  //! The Sigma_g of the cells of face f's stencil at state y.
+  std::pair<double, double> face_gas(int f, std::span<const double> y) const;
+
+  const StateLayout& layout_;
+  const Grid& grid_;
+  const GasColumn& gas_;
+  const CellGas& cell_gas_;
+  const std::vector<physics::Species>& species_;
+  DustFaceFlux flux_;
+  SizeDistributionOptions opt_;
+  physics::coagulation::Smoluchowski engine_;
+  int n_bins_ = 0, slot0_ = -1, g_out_ = -1;
+  double mass_unit_ = 1.0;
+  std::vector<int> monitor_slot_;  //!< per face: global slot of its booking, or -1
+  // per cell: the coagulation coefficients and the bins' St (refresh())
+  mutable std::vector<physics::coagulation::CellCoefficients> coef_;
+  mutable std::vector<double> st_;  //!< [cell * N + k]
+  mutable std::vector<double> scratch_;
+};
+
+}  // namespace panoptic

@@ -1,0 +1,167 @@
+// The size-distribution mode on the grid (spec §15; physics/modules/size_distribution.*):
+// its Jacobian against finite differences on the whole grid, the mass budget (rates and
+// a run), one bin without coagulation against the single-size transport of the same St,
+// and the scene combinations it refuses.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "physics/modules/dust_transport.hpp"
+#include "physics/modules/size_distribution.hpp"
+#include "src/core/units.hpp"
+#include "src/model/scene_validation.hpp"
+#include "src/model/simulation.hpp"
+#include "src/scene/config.hpp"
+#include "tests/unit/support/config_error.hpp"
+#include "tests/unit/support/evolved_state.hpp"
+#include "tests/unit/support/jacobian_check.hpp"
+
+namespace panoptic {
+namespace {
+
+const std::string kSmall =
+    std::string(PANOPTIC_SOURCE_DIR) + "/params/tests/distribution_small.toml";
+
+Config small_scene(const std::vector<std::string>& sets = {}) {
+  return load_scene(kSmall, sets);
+}
+
+void expect_jacobian_exact(const std::vector<std::string>& sets, const char* label) {
+  Simulation sim(small_scene(sets));
+  const auto& L = sim.model().layout();
+  for (unsigned seed : {1u, 2u}) {
+    const auto c = testing::compare_with_fd(sim, testing::perturbed_state(sim, seed));
+    std::printf(
+        "%s, seed %u: row-scaled error %.2e, entry error %.2e, %ld FD non-zeros\n", label,
+        seed, c.max_rel_err, c.max_entry_err, c.nnz_fd);
+    EXPECT_LT(c.max_rel_err, 1e-7) << label << ": worst d(" << L.describe(c.worst_row)
+                                   << ")/d(" << L.describe(c.worst_col) << "): analytic "
+                                   << c.worst_analytic << ", FD " << c.worst_fd;
+    EXPECT_LT(c.max_entry_err, 1e-4) << label << ": d(" << L.describe(c.entry_row)
+                                     << ")/d(" << L.describe(c.entry_col) << ")";
+    EXPECT_EQ(c.outside_pattern, 0) << label;
+    // the dense coagulation blocks are there (12 cells x 50 x 50 in all)
+    EXPECT_GT(c.nnz_fd, 12 * 50 * 40) << label;
+  }
+}
+
+// Coagulation (sticking, fragmentation, cratering), drift, diffusion and the viscous gas
+// at once, on states perturbed by +-30 % per component (every bin filled).
+TEST(SizeDistribution, JacobianMatchesFiniteDifferences) {
+  expect_jacobian_exact({}, "distribution, evolving gas");
+}
+
+// The limited advection's far upwind cell, per bin.
+TEST(SizeDistribution, JacobianMatchesFiniteDifferencesVanLeer) {
+  expect_jacobian_exact({"transport.advection=\"van_leer\"", "gas.evolve=false"},
+                        "distribution, van Leer, static gas");
+}
+
+// The budget terms' rates cancel (coagulation moves mass between bins only; the transport
+// books what leaves through r_in), and a run keeps the budget to round-off.
+TEST(SizeDistribution, MassBudgetCloses) {
+  Simulation sim(small_scene());
+  const std::vector<double> y = evolved_state(sim, 3000.0);
+  std::vector<double> ydot(y.size());
+  sim.model().rhs(3000.0 * units::kYr, y, ydot);
+  const auto rates = sim.budget_masses(ydot);  // linear terms: d(mass)/dt = mass(ydot)
+  double sum = 0.0, scale = 0.0, out = 0.0;
+  for (std::size_t k = 0; k < rates.size(); ++k) {
+    sum += rates[k];
+    scale += std::abs(rates[k]);
+    if (sim.budget_terms()[k].name == "m_out_inner") out = rates[k];
+  }
+  std::printf(
+      "|sum of the rates| / sum of |rates| = %.1e; budget error after 3000 yr %.1e\n",
+      std::abs(sum) / scale, sim.budget_error(y));
+  EXPECT_GT(out, 1e3 * 1e-12 * scale) << "no dust leaves: the check would not see it";
+  EXPECT_LT(std::abs(sum), 1e-12 * scale);
+  EXPECT_LT(sim.budget_error(y), 1e-10);
+  // coagulation moved the mass up the grid: the mass-dominating bin is no longer MRN's
+  const auto* dist = sim.distribution();
+  ASSERT_NE(dist, nullptr);
+  EXPECT_GT(dist->dominant_bin(0, y), 10);
+}
+
+// One bin without coagulation is the single-size transport of the same St: the same flux
+// operator, boundaries and booking. A power-law gas disk with Epstein drag gives the bin
+// St ∝ Sigma_g^-1 ∝ r^p, which the single-size scene prescribes as transport.St and
+// St_slope.
+TEST(SizeDistribution, OneBinWithoutGrowthIsTheSingleSizeTransport) {
+  const std::vector<std::string> common{"disk.model=\"powerlaw\"", "disk.p=1.0",
+                                        "gas.evolve=false", "growth.enabled=false",
+                                        "fragmentation.enabled=false"};
+  std::vector<std::string> dist_sets = common;
+  for (const char* s : {"growth.drag_law=\"epstein\"", "model.init=\"monomers\"",
+                        "model.m_min_g=100.0", "model.m_max_g=1000.0"})
+    dist_sets.push_back(s);
+  Simulation dist(small_scene(dist_sets));
+  const auto y_dist0 = dist.initial_state();
+  const double st0 = dist.distribution()->dominant_st(y_dist0)[0];
+  const double r0_au = dist.grid().r_c(0) / units::kAu;
+  char st_set[64];
+  std::snprintf(st_set, sizeof st_set, "transport.St=%.17g", st0 / r0_au);
+  std::vector<std::string> single_sets = common;
+  for (const char* s : {"model.kind=\"single_size\"", "transport.St_slope=1.0"})
+    single_sets.push_back(s);
+  single_sets.push_back(st_set);
+  Simulation single(small_scene(single_sets));
+  ASSERT_GT(st0, 1e-3);  // drift matters
+
+  const auto& Ld = dist.model().layout();
+  const auto& Ls = single.model().layout();
+  const int n = dist.grid().n_cells(), bin0 = dist.distribution()->bin_slot(0);
+  const int sd = single.transport().sigma_slot();
+  std::vector<double> fd(y_dist0.size()), fs(Ls.size());
+  dist.model().rhs(0.0, y_dist0, fd);
+  single.model().rhs(0.0, single.initial_state(), fs);
+  double scale = 0.0, diff = 0.0;
+  for (int i = 0; i < n; ++i) {
+    scale = std::max(scale, std::abs(fs[Ls.index(i, sd)]));
+    diff = std::max(diff, std::abs(fd[Ld.index(i, bin0)] - fs[Ls.index(i, sd)]));
+  }
+  std::printf("d sigma/dt: max |distribution - single size| / max |single| = %.1e\n",
+              diff / scale);
+  EXPECT_LT(diff, 1e-12 * scale);
+
+  // and integrated: 3 000 yr, the profiles and the mass through r_in
+  const auto yd = evolved_state(dist, 3000.0), ys = evolved_state(single, 3000.0);
+  double worst = 0.0, peak = 0.0;
+  for (int i = 0; i < n; ++i) {
+    peak = std::max(peak, ys[Ls.index(i, sd)]);
+    worst = std::max(worst, std::abs(yd[Ld.index(i, bin0)] - ys[Ls.index(i, sd)]));
+  }
+  const double out_d = dist.distribution()->mass_out(yd);
+  const double out_s = single.transport().mass_out(ys);
+  std::printf("after 3000 yr: max |Delta sigma| / max sigma = %.1e, m_out %.6e vs %.6e\n",
+              worst / peak, out_d, out_s);
+  EXPECT_LT(worst, 1e-5 * peak);
+  EXPECT_GT(out_s, 0.0);
+  EXPECT_NEAR(out_d / out_s, 1.0, 1e-5);
+}
+
+TEST(SizeDistribution, RefusesWhatItDoesNotCarryYet) {
+  for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
+           {"porosity.enabled=true", "porosity.enabled"},
+           {"snowline.enabled=true", "snowline.enabled"},
+           {"planetesimals.si=\"d16\"", "planetesimals.si"},
+           {"erosion.model=\"halt\"", "erosion.model"},
+           {"bouncing.enabled=true", "bouncing.enabled"}}) {
+    const std::string msg =
+        config_error_message([&] { validate_scene(small_scene({set})); }, set);
+    EXPECT_NE(msg.find(key), std::string::npos) << msg;
+    EXPECT_NE(msg.find("not supported with model.kind = \"distribution\" yet"),
+              std::string::npos)
+        << msg;
+  }
+  const std::string msg = config_error_message(
+      [] { validate_scene(small_scene({"model.m_min_g=1e3"})); }, "m_min_g > m_max_g");
+  EXPECT_NE(msg.find("model.m_min_g"), std::string::npos) << msg;
+}
+
+}  // namespace
+}  // namespace panoptic
