@@ -23,6 +23,7 @@
 #include "src/io/durable_file.hpp"
 #include "src/io/h5.hpp"
 #include "src/run/restart.hpp"
+#include "src/scene/config.hpp"
 
 namespace panoptic {
 namespace fs = std::filesystem;
@@ -258,6 +259,22 @@ std::optional<RunRecord> read_record(const fs::path& status) {
   return r;
 }
 
+namespace {
+
+// Two resolved scenes of the same values: the same text, or (a run written by another
+// version of panoptic, whose resolved scene is commented otherwise) the same values.
+bool same_scene(const std::string& stored, const std::string& expected) {
+  if (stored == expected) return true;
+  try {
+    return load_scene_text(stored, "config_toml").values_ ==
+           load_scene_text(expected, "manifest").values_;
+  } catch (const ConfigError&) {
+    return false;
+  }
+}
+
+}  // namespace
+
 RunInspection inspect_run(const fs::path& h5path, const std::string& config_toml,
                           double t_end_yr) {
   RunInspection r;
@@ -270,7 +287,7 @@ RunInspection inspect_run(const fs::path& h5path, const std::string& config_toml
   try {
     h5::Handle f = h5::open_file(h5path.string(), false);
     if (!h5::has_attr(f.get(), "config_toml") ||
-        h5::get_attr_string(f.get(), "config_toml") != config_toml) {
+        !same_scene(h5::get_attr_string(f.get(), "config_toml"), config_toml)) {
       r.why =
           "the file is of another scene (config_toml differs from the manifest's run)";
       return r;

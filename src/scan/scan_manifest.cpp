@@ -368,7 +368,11 @@ Manifest expand_scan_text(std::string_view text, const std::string& name,
   const fs::path canon = fs::weakly_canonical(scene_path, ec);
   m.scene = ec ? fs::absolute(scene_path) : canon;
   try {
-    const std::string bytes = read_file(m.scene, "the base scene");
+    // the scene and the scenes it builds on (its `base` chain), as a run reads them
+    std::string bytes = read_file(m.scene, "the base scene");
+    const std::vector<fs::path> files = scene_files(m.scene);
+    for (std::size_t k = 1; k < files.size(); ++k)
+      bytes += read_file(files[k], "a base of the scan's scene");
     m.scene_hash = hex64(fnv1a64(std::as_bytes(std::span(bytes.data(), bytes.size()))));
   } catch (const ConfigError& e) {
     where.fail(*scene, "scan.scene = " + toml_string(scene->as_string()->get()) + ": " +

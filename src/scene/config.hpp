@@ -22,6 +22,10 @@ namespace panoptic {
 struct ValueOrigin {
   std::string where;
   bool user_set = false;  //!< false when the default was used
+  //! the scene file that set it (the scene or one of its bases); "" for --set, default
+  std::string file;
+  //! its line says the run does not read it (a resolved scene's mark: no warning)
+  bool marked_not_read = false;
 };
 
 class Config {
@@ -58,10 +62,14 @@ class Config {
 //! value is a TOML literal, or a bare word taken as a string. Unknown keys, wrong types,
 //! out-of-range values, unknown choices and malformed TOML (even arbitrary bytes) throw
 //! ConfigError naming file:line:col, the key, the value, the constraint and the fix.
+//! A scene may start with `base = "other.toml"` (relative to its folder): the keys of
+//! that scene (and of its own base, to any depth) with this file's keys over them; a
+//! base that cannot be read, or a cycle of bases, throws ConfigError naming the chain.
 Config load_scene(const std::filesystem::path& file,
                   std::span<const std::string> overrides = {});
 
-//! Same, from text in memory (`name` is used in messages). For tests and the fuzzer.
+//! Same, from text in memory (`name` is used in messages, and a `base` is relative to its
+//! folder). For tests, the fuzzer and the scenes stored in outputs and checkpoints.
 Config load_scene_text(std::string_view text, const std::string& name,
                        std::span<const std::string> overrides = {});
 
@@ -86,6 +94,11 @@ std::string empty_scene_warning(const Config& config);
 //! its default (off) value is not reported: it turns nothing on. Warnings, not errors: a
 //! scan's base scene may carry keys for an axis that switches the model.
 std::vector<std::string> unused_key_warnings(const Config& config);
+
+//! The scene files `file` reads, itself first, then its base, its base's base, ...
+//! (paths as the loader opens them). Throws ConfigError as load_scene() does for a base
+//! that cannot be read or a cycle. For panoptic scan, which keeps a digest of them.
+std::vector<std::filesystem::path> scene_files(const std::filesystem::path& file);
 
 //! params/reference.toml as generated from the schema: every key, commented, with units
 //! and defaults. A unit test checks that the file in the repository equals this text.

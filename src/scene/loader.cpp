@@ -17,11 +17,14 @@
 #include "src/scene/key_defaults.hpp"
 #include "src/scene/key_suggestions.hpp"
 #include "src/scene/key_text.hpp"
+#include "src/scene/key_use.hpp"
 #include "src/scene/schema_lookup.hpp"
 #include "src/scene/source_text.hpp"
 #include "src/scene/toml_guard.hpp"
 #include "src/scene/toml_literal.hpp"
 #include "src/scene/value_conversion.hpp"
+
+namespace fs = std::filesystem;
 
 namespace panoptic {
 using namespace scene_detail;
@@ -32,6 +35,8 @@ namespace {
 constexpr size_t kMaxSceneBytes = 16u << 20;
 // Errors reported at once; the rest are counted.
 constexpr size_t kMaxErrors = 20;
+// The root key naming the scene a scene builds on.
+constexpr std::string_view kBaseKey = "base";
 
 struct Problem {
   long line;  // sort key: problems of the file in file order, --set ones after
@@ -45,9 +50,17 @@ class Loader {
   Loader(std::string_view text, std::string name)
       : source_(text), name_(std::move(name)) {}
 
+  //! The next file of a scene's chain of bases (the deepest base first): its keys
+  //! override those read before, and messages name it.
+  void begin_file(std::string_view text, std::string name) {
+    source_ = SourceText(text);
+    name_ = std::move(name);
+  }
+
   void read_file(const toml::table& root) {
     for (auto&& [k, node] : root) {
       const std::string name(k.str());
+      if (name == kBaseKey) continue;  // read by read_with_bases
       if (const toml::table* table = node.as_table()) {
         if (is_table(name)) {
           read_table(name, *table);
@@ -127,7 +140,7 @@ class Loader {
       return;
     }
     values_[spec->key] = std::move(*value);
-    origins_[spec->key] = ValueOrigin{where, true};
+    origins_[spec->key] = ValueOrigin{where, true, "", false};
   }
 
   // Throws the collected problems, if any, in file order.
@@ -193,6 +206,12 @@ class Loader {
       const std::string key = table_name + "." + std::string(k.str());
       const toml::source_position at = k.source().begin;
       const KeySpec* spec = find_spec(key);
+      if (!spec && k.str() == kBaseKey) {
+        add(at, key + " = " + written(node) + ": unknown key; " + std::string(kBaseKey) +
+                    " = \"other.toml\" goes at the top of the scene, before the first "
+                    "[table]");
+        continue;
+      }
       if (!spec) {
         if (node.is_table()) {
           const std::string what =
@@ -208,7 +227,9 @@ class Loader {
       std::string problem;
       if (auto value = convert(*spec, node, problem)) {
         values_[key] = std::move(*value);
-        origins_[key] = ValueOrigin{here(at), true};
+        const std::string_view comment = source_.rest_of_line(node.source().end);
+        origins_[key] = ValueOrigin{here(at), true, name_,
+                                    comment.find(kNotReadMark) != std::string_view::npos};
       } else {
         add(at, key + " = " + written(node) + ": " + problem);
       }
@@ -245,50 +266,9 @@ class Loader {
   std::vector<Problem> problems_;
 };
 
-}  // namespace
-
-Config load_scene_text(std::string_view text, const std::string& name,
-                       std::span<const std::string> overrides) {
-  if (text.size() > kMaxSceneBytes) {
-    throw ConfigError(name + ": scene file too large (" + std::to_string(text.size()) +
-                      " bytes, the limit is " + std::to_string(kMaxSceneBytes >> 20) +
-                      " MiB); is this the right file?");
-  }
-  const toml::table root = parse_toml_guarded(text, name);
-
-  Loader loader(text, name);
-  loader.read_file(root);
-  for (const std::string& item : overrides) loader.apply_override(item);
-  loader.throw_if_failed();
-
-  Config config;
-  config.file_ = name;
-  config.values_ = std::move(loader.values_);
-  config.origins_ = std::move(loader.origins_);
-  for (const auto& [key, value] : default_values()) {
-    if (config.values_.emplace(key, value).second) {
-      config.origins_[key] = ValueOrigin{"default", false};
-    }
-  }
-  return config;
-}
-
-Config apply_trusted_overrides(const Config& base,
-                               std::span<const std::string> overrides) {
-  Loader loader("", base.file().string());
-  loader.trusted_ = true;
-  for (const std::string& item : overrides) loader.apply_override(item);
-  loader.throw_if_failed();
-  Config config = base;
-  for (auto& [key, value] : loader.values_) {
-    config.values_[key] = std::move(value);
-    config.origins_[key] = loader.origins_[key];
-  }
-  return config;
-}
-
-Config load_scene(const std::filesystem::path& file,
-                  std::span<const std::string> overrides) {
+// The bytes of a scene file; ConfigError "<file>: ..." when it cannot be read, is a
+// directory or is larger than kMaxSceneBytes.
+std::string read_scene_bytes(const fs::path& file) {
   const std::string name = file.string();
   const auto cannot_read = [&](int err) {
     return ConfigError(name + ": cannot read scene file (" + std::strerror(err) + ")");
@@ -313,7 +293,7 @@ Config load_scene(const std::filesystem::path& file,
       if (n < 0) err = errno;
       if (n <= 0) break;
       text.append(buf, static_cast<size_t>(n));
-      if (text.size() > kMaxSceneBytes) break;  // load_scene_text says why
+      if (text.size() > kMaxSceneBytes) break;  // checked below
     }
   }
   ::close(fd);
@@ -327,9 +307,129 @@ Config load_scene(const std::filesystem::path& file,
                       ", the limit is " + std::to_string(kMaxSceneBytes >> 20) +
                       " MiB); is this the right file?");
   }
-  Config config = load_scene_text(text, name, overrides);
+  return text;
+}
+
+void check_size(std::string_view text, const std::string& name) {
+  if (text.size() > kMaxSceneBytes) {
+    throw ConfigError(name + ": scene file too large (" + std::to_string(text.size()) +
+                      " bytes, the limit is " + std::to_string(kMaxSceneBytes >> 20) +
+                      " MiB); is this the right file?");
+  }
+}
+
+// A file as the cycle check compares it: the same file under two spellings is one.
+std::string identity(const fs::path& file) {
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(fs::absolute(file, ec), ec);
+  return ec ? fs::absolute(file).lexically_normal().string() : p.string();
+}
+
+// The scenes read so far, from the scene given down to the base being read.
+struct Chain {
+  std::vector<std::string> ids;  // identity() of each
+  std::vector<fs::path> files;   // as the loader opened them
+};
+
+// Reads the scene `text` (file `name`) into `loader` (when given): its base scene first,
+// recursively, so that the keys of each file override those of its bases. `chain`
+// gets every file read. ConfigError for a base that is no string, cannot be read, or
+// closes a cycle, naming the file and line of the base key, the path tried and the fix.
+void read_with_bases(Loader* loader, std::string_view text, const std::string& name,
+                     Chain& chain) {
+  check_size(text, name);
+  const toml::table root = parse_toml_guarded(text, name);
+  chain.ids.push_back(identity(name));
+  chain.files.emplace_back(name);
+  if (const toml::node* base = root.get(kBaseKey)) {
+    const toml::source_position at = base->source().begin;
+    const std::string where = name + ":" + std::to_string(at.line) + ":" +
+                              std::to_string(at.column) +
+                              ": base = " + SourceText(text).slice(base->source());
+    const auto* path_text = base->as_string();
+    if (!path_text || path_text->get().empty())
+      throw ConfigError(where +
+                        ": must be the path of the scene this one builds on, as a "
+                        "string relative to this file's folder, e.g. base = "
+                        "\"fiducial.toml\"");
+    fs::path path = path_text->get();
+    if (path.is_relative()) path = fs::path(name).parent_path() / path;
+    path = path.lexically_normal();
+    const std::string id = identity(path);
+    if (std::find(chain.ids.begin(), chain.ids.end(), id) != chain.ids.end()) {
+      std::string cycle;
+      const auto first = std::find(chain.ids.begin(), chain.ids.end(), id);
+      for (auto it = first; it != chain.ids.end(); ++it)
+        cycle +=
+            chain.files[static_cast<size_t>(it - chain.ids.begin())].string() + " -> ";
+      throw ConfigError(where + ": the scenes build on each other in a cycle, " + cycle +
+                        path.string() +
+                        "; a scene cannot be its own base: remove the base line of one "
+                        "of them");
+    }
+    std::string base_text;
+    try {
+      base_text = read_scene_bytes(path);
+    } catch (const ConfigError& e) {
+      throw ConfigError(where + ": cannot read the base scene: " + e.what() +
+                        "; the path is relative to the folder of " + name +
+                        ": correct it, or remove the base line");
+    }
+    read_with_bases(loader, base_text, path.string(), chain);
+    if (loader) loader->throw_if_failed();  // a base's own problems, at once
+  }
+  if (loader) {
+    loader->begin_file(text, name);
+    loader->read_file(root);
+  }
+}
+
+}  // namespace
+
+Config load_scene_text(std::string_view text, const std::string& name,
+                       std::span<const std::string> overrides) {
+  Loader loader(text, name);
+  Chain chain;
+  read_with_bases(&loader, text, name, chain);
+  for (const std::string& item : overrides) loader.apply_override(item);
+  loader.throw_if_failed();
+
+  Config config;
+  config.file_ = name;
+  config.values_ = std::move(loader.values_);
+  config.origins_ = std::move(loader.origins_);
+  for (const auto& [key, value] : default_values()) {
+    if (config.values_.emplace(key, value).second) {
+      config.origins_[key] = ValueOrigin{"default", false, "", false};
+    }
+  }
+  return config;
+}
+
+Config apply_trusted_overrides(const Config& base,
+                               std::span<const std::string> overrides) {
+  Loader loader("", base.file().string());
+  loader.trusted_ = true;
+  for (const std::string& item : overrides) loader.apply_override(item);
+  loader.throw_if_failed();
+  Config config = base;
+  for (auto& [key, value] : loader.values_) {
+    config.values_[key] = std::move(value);
+    config.origins_[key] = loader.origins_[key];
+  }
+  return config;
+}
+
+Config load_scene(const fs::path& file, std::span<const std::string> overrides) {
+  Config config = load_scene_text(read_scene_bytes(file), file.string(), overrides);
   config.file_ = file;
   return config;
+}
+
+std::vector<fs::path> scene_files(const fs::path& file) {
+  Chain chain;
+  read_with_bases(nullptr, read_scene_bytes(file), file.string(), chain);
+  return chain.files;
 }
 
 }  // namespace panoptic

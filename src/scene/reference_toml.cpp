@@ -23,6 +23,9 @@ std::string reference_toml() {
       "output).\n"
       "# A scene sets only the keys it changes; every other key keeps the default "
       "below.\n"
+      "# A scene may start with base = \"other.toml\" (relative to its folder): the "
+      "other\n"
+      "# scene's keys, with this file's over them (params/README.md, Inheritance).\n"
       "# Comments: [unit] meaning (allowed values); \"read only with\" names the\n"
       "# switches a run needs to read the key (`panoptic check` and `run` warn about a\n"
       "# key set without them).\n";

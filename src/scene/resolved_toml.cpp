@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "src/scene/config.hpp"
+#include "src/scene/key_use.hpp"
 #include "src/scene/schema_lookup.hpp"
 #include "src/scene/toml_literal.hpp"
 #include "src/scene/toml_tables.hpp"
@@ -17,7 +18,22 @@ std::string Config::resolved_toml() const {
     if (it == values_.end()) continue;
     std::string comment;
     if (!spec.unit.empty()) comment += " [" + spec.unit + "]";
-    if (!user_set(spec.key)) comment += " (default)";
+    const auto origin = origins_.find(spec.key);
+    if (!user_set(spec.key)) {
+      comment += " (default)";
+    } else if (origin != origins_.end() && origin->second.file.empty()) {
+      comment += " (--set)";
+    } else if (origin != origins_.end() && origin->second.file != file_.string()) {
+      comment += " (from " + comment_safe(origin->second.file) + ")";
+    }
+    if (const auto unmet = unmet_conditions(*this, spec); !unmet.empty()) {
+      std::vector<std::string> now;
+      for (const UnmetCondition& c : unmet) now.push_back(c.now);
+      comment += ' ';
+      comment += kNotReadMark;
+      comment += comment_safe(join(now, ", "));
+      comment += ')';
+    }
     lines.push_back(
         KeyLine{spec.key, std::string(leaf_of(spec.key)) + " = " + toml_value(it->second),
                 comment});
@@ -25,7 +41,10 @@ std::string Config::resolved_toml() const {
   constexpr size_t kMaxAlign = 40;  // long values do not push every comment right
   return "# The resolved scene " + comment_safe(file_.string()) +
          ": every key, defaults included.\n"
-         "# \"(default)\" marks a key the scene did not set.\n" +
+         "# \"(default)\" marks a key the scene did not set, \"(from FILE)\" one a base "
+         "scene set,\n"
+         "# \"(--set)\" an override, \"(not read: ...)\" one this run does not read "
+         "(no warning).\n" +
          tables_text(lines, kMaxAlign, "  #");
 }
 

@@ -16,6 +16,13 @@ std::string SourceText::slice(const toml::source_region& region) const {
   return tidy(text_.substr(*begin, *end - *begin));
 }
 
+std::string_view SourceText::rest_of_line(const toml::source_position& p) const {
+  const auto begin = offset(p);
+  if (!begin || *begin > text_.size()) return {};
+  const size_t end = text_.find('\n', *begin);
+  return text_.substr(*begin, end == std::string_view::npos ? end : end - *begin);
+}
+
 std::string SourceText::tidy(std::string_view s) {
   constexpr size_t kMaxCodePoints = 60;
   std::string out;

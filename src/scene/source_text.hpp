@@ -19,6 +19,8 @@ class SourceText {
 
   //! The text of `region`, tidied; "" when the region is not in the text.
   std::string slice(const toml::source_region& region) const;
+  //! The text from `p` to the end of its line ("" when `p` is not in the text).
+  std::string_view rest_of_line(const toml::source_position& p) const;
   //! `s` with whitespace runs collapsed to one space and cut after 60 code points.
   static std::string tidy(std::string_view s);
 

@@ -1,10 +1,8 @@
 // Warnings about the keys a scene sets: none at all (an empty file), or some that a run
 // of this scene does not read (KeySpec::used_when).
-#include <algorithm>
-
 #include "src/scene/config.hpp"
 #include "src/scene/key_defaults.hpp"
-#include "src/scene/key_text.hpp"
+#include "src/scene/key_use.hpp"
 #include "src/scene/schema_lookup.hpp"
 #include "src/scene/toml_literal.hpp"
 
@@ -40,15 +38,15 @@ std::vector<std::string> unused_key_warnings(const Config& config) {
     if (spec.used_when.empty() || !config.user_set(spec.key)) continue;
     const auto it = config.values_.find(spec.key);
     if (it == config.values_.end()) continue;
+    // a resolved scene's line that says so itself (kNotReadMark)
+    if (const auto o = config.origins_.find(spec.key);
+        o != config.origins_.end() && o->second.marked_not_read)
+      continue;
     const std::string value = toml_value(it->second);
     std::vector<std::string> now, wanted;  // the conditions that fail
-    for (const UsedWhen& c : spec.used_when) {
-      const auto sw = config.values_.find(c.key);
-      const std::string v = sw == config.values_.end() ? "" : toml_value(sw->second);
-      if (std::find(c.values.begin(), c.values.end(), v) == c.values.end()) {
-        now.push_back(c.key + " = " + v);
-        wanted.push_back(condition_text(c));
-      }
+    for (const UnmetCondition& c : unmet_conditions(config, spec)) {
+      now.push_back(c.now);
+      wanted.push_back(c.wanted);
     }
     if (now.empty()) continue;
     // fragmentation.enabled = false with growth off: an explicit "off" turns nothing on
