@@ -45,8 +45,8 @@ struct ManifestEntry {
 };
 
 struct Manifest {
-  std::filesystem::path scene;     //!< base scene, absolute
-  std::string scene_hash;  //!< FNV-1a of the bytes of the scene and its bases (hex)
+  std::filesystem::path scene;  //!< base scene, absolute
+  std::string scene_hash;       //!< FNV-1a of the bytes of the scene and its bases (hex)
   std::vector<std::string> fixed;  //!< --set overrides applied to every run (before axes)
   std::string sampling = "grid";   //!< "grid" or "lhs"
   long samples = 0;                //!< lhs
