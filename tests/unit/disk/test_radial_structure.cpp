@@ -12,9 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "disk/disk_local_gas.hpp"
 #include "disk/gas_disk.hpp"
 #include "disk/radial_table.hpp"
+#include "disk/viscous_gas.hpp"
 #include "src/core/units.hpp"
+#include "src/solver/grid.hpp"
 
 using namespace panoptic;
 using units::kAu;
@@ -185,4 +188,30 @@ TEST(PowerLawDisk, NormalisedByItsMassBetweenTwoRadii) {
       2.0 * units::kPi * 1700.0 * kAu * kAu * 2.0 * (std::sqrt(300.0) - 1.0);
   EXPECT_NEAR(PowerLawDisk::sigma_1au_for_mass(mmsn, 1.5, kAu, 300.0 * kAu), 1700.0,
               1e-9);
+}
+
+TEST(AlphaProfile, ReachesTheLocalGasAndTheViscosity) {
+  // the gas a cell sees (relative velocities V_g^2 ∝ alpha, the dust scale height, spec
+  // §2-§3) and the viscous stencil (nu = alpha c_s H, §1.2) take alpha(r), not alpha_0
+  DiskParams p;
+  p.star = kSun;
+  p.alpha.kind = AlphaProfile::Kind::kGaussian;
+  p.alpha.amplitude = -0.9;
+  p.alpha.r0 = 10.0 * kAu;
+  p.alpha.width = 1.0 * kAu;
+  const auto disk = make_disk(p);
+  const Grid grid(5.0 * kAu, 20.0 * kAu, 64);
+  std::vector<double> sigma(grid.n_cells());
+  for (int i = 0; i < grid.n_cells(); ++i) sigma[i] = disk->sigma_g(grid.r_c(i));
+  const auto gas = local_gas_centres(*disk, grid, sigma);
+  const ViscousStencil visc = make_viscous_stencil(*disk, grid, false);
+  double lowest = 1.0;
+  for (int i = 0; i < grid.n_cells(); ++i) {
+    const double r = grid.r_c(i);
+    EXPECT_EQ(gas[i].alpha, disk->alpha(r));
+    EXPECT_EQ(visc.g_coef[i],
+              disk->alpha(r) * disk->c_s(r) * disk->h_g(r) * std::sqrt(r));
+    lowest = std::min(lowest, gas[i].alpha);
+  }
+  EXPECT_LT(lowest, 1.5e-4);  // the dip is on the grid: alpha_0 would fail the checks
 }
