@@ -14,11 +14,9 @@
 #include "build_info.hpp"  // PANOPTIC_GIT_SHA (generated at build time)
 #include "src/core/error.hpp"
 #include "src/core/exit_codes.hpp"
-#include "src/model/output_table.hpp"
-#include "src/model/simulation.hpp"
 #include "src/observe/observe.hpp"
 #include "src/run/commands.hpp"
-#include "src/run/diagnostics.hpp"
+#include "src/run/output_reference.hpp"
 #include "src/run/run.hpp"
 #include "src/scan/scan.hpp"
 #include "src/scene/config.hpp"
@@ -172,8 +170,8 @@ int run_command_line(int argc, char** argv) {
       "print every scene key with its default and unit (params/reference.toml)");
   bool outputs = false;
   ref_cmd->add_flag("--outputs", outputs,
-                    "print the table of every snapshot field (Markdown: field, units, "
-                    "description), from the fields the modules declare");
+                    "print the table of every dataset and attribute of a run's output "
+                    "(Markdown: path, units, description), from their declarations");
 
   ScanOptions scan_opts;
   auto* scan_cmd = app.add_subcommand(
@@ -246,11 +244,8 @@ int run_command_line(int argc, char** argv) {
       obs.a_cm_given = obs_cmd->count("--a-cm") > 0;
       return observe(obs);
     }
-    if (*ref_cmd && outputs) {  // every module on, so every field is declared
-      const Simulation every(every_process_scene());
-      std::vector<OutputField> fields = every.output_fields();
-      for (OutputField& f : RunDiagnostics::output_fields(every)) fields.push_back(f);
-      std::fputs(output_table_markdown(every.static_fields(), fields).c_str(), stdout);
+    if (*ref_cmd && outputs) {
+      std::fputs(output_reference_markdown().c_str(), stdout);
       return 0;
     }
     if (*ref_cmd) {

@@ -47,27 +47,14 @@ std::string hex(std::uint64_t x) {
 }
 
 void set_stats(hid_t group, const SolverStats& s) {
-  h5::set_attr(group, "nst", s.nst);
-  h5::set_attr(group, "nfe", s.nfe);
-  h5::set_attr(group, "nje", s.nje);
-  h5::set_attr(group, "nsetups", s.nsetups);
-  h5::set_attr(group, "netf", s.netf);
-  h5::set_attr(group, "nni", s.nni);
-  h5::set_attr(group, "nncf", s.nncf);
-  h5::set_attr(group, "nreinit", s.nreinit);
+  for (const SolverCounter& c : kSolverCounters) h5::set_attr(group, c.name, s.*c.value);
   h5::set_attr(group, "h_last", s.h_last);
 }
 
 SolverStats get_stats(hid_t group) {
   SolverStats s;
-  s.nst = h5::get_attr_long(group, "nst");
-  s.nfe = h5::get_attr_long(group, "nfe");
-  s.nje = h5::get_attr_long(group, "nje");
-  s.nsetups = h5::get_attr_long(group, "nsetups");
-  s.netf = h5::get_attr_long(group, "netf");
-  s.nni = h5::get_attr_long(group, "nni");
-  s.nncf = h5::get_attr_long(group, "nncf");
-  s.nreinit = h5::get_attr_long(group, "nreinit");
+  for (const SolverCounter& c : kSolverCounters)
+    s.*c.value = h5::get_attr_long(group, c.name);
   s.h_last = h5::get_attr_double(group, "h_last");
   return s;
 }
@@ -157,8 +144,7 @@ std::uint64_t checkpoint_checksum(const Checkpoint& chk) {
   h.text(chk.layout_signature);
   h.text(chk.config_toml);
   const SolverStats& s = chk.stats;
-  for (const long x : {s.nst, s.nfe, s.nje, s.nsetups, s.netf, s.nni, s.nncf, s.nreinit})
-    h.integer(x);
+  for (const SolverCounter& c : kSolverCounters) h.integer(s.*c.value);
   h.real(s.h_last);
   h.real(chk.wall_s);
   h.text(chk.output_file);

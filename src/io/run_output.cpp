@@ -11,6 +11,7 @@
 #include <limits>
 #include <random>
 #include <string_view>
+#include <variant>
 
 #include "src/core/error.hpp"
 #include "src/io/durable_file.hpp"
@@ -103,14 +104,11 @@ RunOutput::RunOutput(const std::filesystem::path& path, bool overwrite,
   try {
     file_ = h5::create_file(staging_.string());
     run_id_ = new_run_id();
-    h5::set_attr(file_.get(), "run_id", run_id_);
-    h5::set_attr(file_.get(), "scene", meta.scene);
-    h5::set_attr(file_.get(), "config_toml", meta.config_toml);
-    h5::set_attr(file_.get(), "git_sha", meta.git_sha);
-    h5::set_attr(file_.get(), "version", meta.version);
+    for (const OutputAttribute& a : root_attributes(meta, run_id_)) write_attribute(a);
     ensure_group("snapshots");
     h5::Handle g = h5::open_group(file_.get(), "snapshots");
-    h5::create_stack(g.get(), "time", 0, "yr", "simulated time of each snapshot");
+    const OutputEntry time = snapshot_time();
+    h5::create_stack(g.get(), "time", 0, time.units, time.description);
     flush();
   } catch (const IoError& e) {
     const int err = errno;  // of the failed write, if it was one
@@ -289,18 +287,16 @@ void RunOutput::write_static(const std::string& group, const std::string& name,
   h5::write_vector(g.get(), name, data, units, description);
 }
 
-void RunOutput::set_group_attr(const std::string& group, const std::string& name,
-                               double value) {
-  ensure_group(group);
-  h5::Handle g = h5::open_group(file_.get(), group);
-  h5::set_attr(g.get(), name, value);
-}
-
-void RunOutput::set_group_attr_string(const std::string& group, const std::string& name,
-                                      const std::string& value) {
-  ensure_group(group);
-  h5::Handle g = h5::open_group(file_.get(), group);
-  h5::set_attr(g.get(), name, value);
+void RunOutput::write_attribute(const OutputAttribute& a) {
+  h5::Handle g;
+  if (a.group.empty())
+    leave_swmr();  // as ensure_group: an attribute is not created in SWMR mode
+  else {
+    ensure_group(a.group);
+    g = h5::open_group(file_.get(), a.group);
+  }
+  const hid_t object = a.group.empty() ? file_.get() : g.get();
+  std::visit([&](const auto& v) { h5::set_attr(object, a.name, v); }, a.value);
 }
 
 void RunOutput::add_series(const std::string& group, const std::string& name,
@@ -360,19 +356,39 @@ void RunOutput::write_snapshot(double t_yr,
 
 void RunOutput::write_solver(const SolverStats& s, double wall_s,
                              const std::string& status) {
-  ensure_group("solver");
-  h5::Handle g = h5::open_group(file_.get(), "solver");
-  h5::set_attr(g.get(), "nst", s.nst);
-  h5::set_attr(g.get(), "nfe", s.nfe);
-  h5::set_attr(g.get(), "nje", s.nje);
-  h5::set_attr(g.get(), "nsetups", s.nsetups);
-  h5::set_attr(g.get(), "netf", s.netf);
-  h5::set_attr(g.get(), "nni", s.nni);
-  h5::set_attr(g.get(), "nncf", s.nncf);
-  h5::set_attr(g.get(), "nreinit", s.nreinit);
-  h5::set_attr(g.get(), "wall_s", wall_s);
-  h5::set_attr(g.get(), "status", status);
+  for (const OutputAttribute& a : solver_attributes(s, wall_s, status))
+    write_attribute(a);
   flush();
+}
+
+std::vector<OutputAttribute> RunOutput::root_attributes(const RunMetadata& meta,
+                                                        const std::string& run_id) {
+  return {{"", "run_id", "", "random id of this output, which its checkpoints record",
+           run_id},
+          {"", "scene", "", "scene name (the scene file's stem)", meta.scene},
+          {"", "config_toml", "", "the resolved scene, defaults included (TOML)",
+           meta.config_toml},
+          {"", "git_sha", "",
+           "commit of the build (-dirty if it had uncommitted changes)", meta.git_sha},
+          {"", "version", "", "panoptic version", meta.version}};
+}
+
+OutputEntry RunOutput::snapshot_time() {
+  return {"snapshots/time", "yr", "simulated time of each snapshot"};
+}
+
+std::vector<OutputAttribute> RunOutput::solver_attributes(const SolverStats& s,
+                                                          double wall_s,
+                                                          const std::string& status) {
+  std::vector<OutputAttribute> attributes;
+  for (const SolverCounter& c : kSolverCounters)
+    attributes.push_back({"solver", c.name, "", c.description, s.*c.value});
+  attributes.push_back({"solver", "wall_s", "s", "wall-clock time of the run", wall_s});
+  attributes.push_back(
+      {"solver", "status", "",
+       "how the run ended: completed, stopped by ... (with the restart command), failed",
+       status});
+  return attributes;
 }
 
 std::string RunOutput::start_appending() {

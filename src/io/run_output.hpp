@@ -13,6 +13,7 @@
 #include "src/core/digest.hpp"
 #include "src/core/error.hpp"
 #include "src/io/h5.hpp"
+#include "src/io/output_entry.hpp"
 
 namespace panoptic {
 
@@ -93,9 +94,8 @@ class RunOutput {
   void write_static(const std::string& group, const std::string& name,
                     std::span<const double> data, const std::string& units,
                     const std::string& description);
-  void set_group_attr(const std::string& group, const std::string& name, double value);
-  void set_group_attr_string(const std::string& group, const std::string& name,
-                             const std::string& value);
+  //! Writes an attribute of the root or of a group (created on first use).
+  void write_attribute(const OutputAttribute& attribute);
   //! Declares an extendible dataset /<group>/<name> of `width` values per row (0: scalar
   //! rows), for series not tied to the snapshots (e.g. /timeseries).
   void add_series(const std::string& group, const std::string& name, std::size_t width,
@@ -130,6 +130,16 @@ class RunOutput {
   bool in_swmr_mode() const { return swmr_; }
   //! Writes /solver attributes (overwritten on every call) and flushes.
   void write_solver(const SolverStats& stats, double wall_s, const std::string& status);
+  //! The root attributes the constructor writes (the scene's metadata and `run_id`).
+  static std::vector<OutputAttribute> root_attributes(const RunMetadata& meta,
+                                                      const std::string& run_id);
+  //! The /snapshots/time stack every output has (the other stacks are declared by the
+  //! model, add_field).
+  static OutputEntry snapshot_time();
+  //! The /solver attributes write_solver writes.
+  static std::vector<OutputAttribute> solver_attributes(const SolverStats& stats,
+                                                        double wall_s,
+                                                        const std::string& status);
   void flush();
   //! Flushes and closes the file (after leave_swmr: the copy, which then replaces the
   //! output). IoError when that fails: the output then holds every row, without what

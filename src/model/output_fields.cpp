@@ -91,19 +91,29 @@ std::vector<StaticField> Simulation::static_fields() const {
   return fields;
 }
 
-void Simulation::prepare_output(RunOutput& out) const {
-  for (const StaticField& f : static_fields())
-    out.write_static(f.group, f.name, f.values, f.units, f.description);
-  out.set_group_attr("disk", "r_snow_au", disk_->r_snow() / kAu);
+std::vector<OutputAttribute> Simulation::output_attributes() const {
   std::string monitors;
   for (const auto& mon : monitors_) monitors += (monitors.empty() ? "" : ";") + mon.name;
-  out.set_group_attr_string("pebbles", "names", monitors);
-  for (const OutputField& f : output_fields_)
-    out.add_field(f.name, f.width, f.units, f.description);
   std::string terms;
   for (const auto& term : budget_terms_)
     if (term.in_snapshots) terms += (terms.empty() ? "" : ";") + term.name;
-  out.set_group_attr_string("snapshots", "budget_terms", terms);
+  return {{"disk", "r_snow_au", "au",
+           "snow line, where T = T_sub (written also when the run has no snow line)",
+           disk_->r_snow() / kAu},
+          {"pebbles", "names", "", "names of the radii /pebbles/r_au (;-separated)",
+           monitors},
+          {"snapshots", "budget_terms", "",
+           "the datasets of the mass budget terms (;-separated): their sum is the "
+           "initial dust mass",
+           terms}};
+}
+
+void Simulation::prepare_output(RunOutput& out) const {
+  for (const StaticField& f : static_fields())
+    out.write_static(f.group, f.name, f.values, f.units, f.description);
+  for (const OutputField& f : output_fields_)
+    out.add_field(f.name, f.width, f.units, f.description);
+  for (const OutputAttribute& a : output_attributes()) out.write_attribute(a);
 }
 
 std::map<std::string, std::vector<double>> Simulation::snapshot_fields(

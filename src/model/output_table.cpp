@@ -22,17 +22,35 @@ Config every_process_scene() {
   return load_scene_text("", "every process", on);
 }
 
-std::string output_table_markdown(std::span<const StaticField> static_fields,
-                                  std::span<const OutputField> fields) {
+std::vector<OutputEntry> output_entries(const std::string& group,
+                                        std::span<const OutputField> fields) {
+  std::vector<OutputEntry> rows;
+  for (const OutputField& f : fields)
+    rows.push_back({group + "/" + f.name, f.units, f.description});
+  return rows;
+}
+
+std::vector<OutputEntry> output_entries(std::span<const StaticField> fields) {
+  std::vector<OutputEntry> rows;
+  for (const StaticField& f : fields)
+    rows.push_back({f.group + "/" + f.name, f.units, f.description});
+  return rows;
+}
+
+std::vector<OutputEntry> output_entries(std::span<const OutputAttribute> attributes) {
+  std::vector<OutputEntry> rows;
+  for (const OutputAttribute& a : attributes)
+    rows.push_back({a.group + "@" + a.name, a.units, a.description});
+  return rows;
+}
+
+std::string output_table_markdown(std::span<const OutputEntry> entries) {
   std::ostringstream s;
   s << "| group/field | units | description |\n";
   s << "|---|---|---|\n";
-  for (const StaticField& f : static_fields)
-    s << "| " << f.group << "/" << f.name << " | " << (f.units.empty() ? "-" : f.units)
-      << " | " << escaped(f.description) << " |\n";
-  for (const OutputField& f : fields)
-    s << "| snapshots/" << f.name << " | " << (f.units.empty() ? "-" : f.units) << " | "
-      << escaped(f.description) << " |\n";
+  for (const OutputEntry& e : entries)
+    s << "| " << e.path << " | " << (e.units.empty() ? "-" : e.units) << " | "
+      << escaped(e.description) << " |\n";
   return s.str();
 }
 

@@ -1,11 +1,13 @@
 #pragma once
-//! The Output table of the documentation, generated from the fields the modules and the
-//! model declare (OutputField), so that it is never kept by hand: `panoptic reference
-//! --outputs`.
+//! The Output table of the documentation, generated from the entries the modules, the
+//! model and the writers declare (OutputField, StaticField, OutputAttribute), so that it
+//! is never kept by hand: `panoptic reference --outputs` (src/run/output_reference.hpp
+//! puts the groups together).
 #include <span>
 #include <string>
 #include <vector>
 
+#include "src/io/output_entry.hpp"
 #include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/physics_module.hpp"
@@ -17,9 +19,16 @@ namespace panoptic {
 //! is.
 Config every_process_scene();
 
-//! A Markdown table with one row per field, the static ones first: `<group>/<name>`,
-//! units ("-" for a pure number), description.
-std::string output_table_markdown(std::span<const StaticField> static_fields,
-                                  std::span<const OutputField> fields);
+//! The rows of datasets /<group>/<name> declared as OutputField.
+std::vector<OutputEntry> output_entries(const std::string& group,
+                                        std::span<const OutputField> fields);
+//! The rows of the static datasets (/grid, /disk, /pebbles).
+std::vector<OutputEntry> output_entries(std::span<const StaticField> fields);
+//! The rows of attributes: "<group>@<name>", "@<name>" at the root.
+std::vector<OutputEntry> output_entries(std::span<const OutputAttribute> attributes);
+
+//! A Markdown table with one row per entry, in the given order: path, units ("-" for a
+//! pure number or a text), description.
+std::string output_table_markdown(std::span<const OutputEntry> entries);
 
 }  // namespace panoptic

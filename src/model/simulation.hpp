@@ -13,6 +13,7 @@
 #include "disk/gas_column.hpp"
 #include "disk/local_gas.hpp"
 #include "physics/optical_constants.hpp"
+#include "src/io/output_entry.hpp"
 #include "src/model/pebble_monitors.hpp"
 #include "src/model/scene_to_physics.hpp"
 #include "src/model/scene_validation.hpp"
@@ -86,7 +87,10 @@ class Simulation {
   const std::vector<OutputField>& output_fields() const { return output_fields_; }
   //! /grid, /disk and /pebbles: written once, by prepare_output.
   std::vector<StaticField> static_fields() const;
-  //! Writes the static fields and declares the snapshot fields (output_fields()).
+  //! The attributes of /disk, /pebbles and /snapshots: written once, by prepare_output.
+  std::vector<OutputAttribute> output_attributes() const;
+  //! Writes the static fields and their attributes and declares the snapshot fields
+  //! (output_fields()).
   void prepare_output(RunOutput& out) const;
   //! Every snapshot field at state y (as declared in output_fields()).
   std::map<std::string, std::vector<double>> snapshot_fields(

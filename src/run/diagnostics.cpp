@@ -26,6 +26,14 @@ constexpr double kFormedFraction = 1e-6;
 constexpr double kMearthPerMyr = units::kMearth / units::kMyr;
 // the snapshot field of the first-formation times
 constexpr const char* kFirstFormation = "t_first_pl";
+
+// The /summary dataset of the pebble mass through a monitor: the snow line's and
+// r_in's have one, "" for the others.
+std::string summary_pebble_key(const PebbleMonitor& mon) {
+  if (mon.name == "r_in") return "m_peb_r_in";
+  if (mon.name == "snow line") return "m_peb_snowline";
+  return "";
+}
 }  // namespace
 
 std::vector<OutputField> RunDiagnostics::output_fields(const Simulation& sim) {
@@ -34,6 +42,58 @@ std::vector<OutputField> RunDiagnostics::output_fields(const Simulation& sim) {
            "time of first planetesimal formation in each cell so far (NaN: not yet; "
            "formed: Sigma_pl > /summary/formed_threshold)",
            nullptr}};
+}
+
+std::vector<OutputField> RunDiagnostics::timeseries_fields(const Simulation& sim) {
+  const std::size_t nm = sim.pebble_monitors().size();
+  // one column per budget term (Simulation::budget_terms), then |sum - initial|
+  std::string labels;
+  for (const auto& term : sim.budget_terms()) labels += term.label + ", ";
+  return {{"time", 0, "yr", "sample times (first CVODE step past each)", nullptr},
+          {"pebble_flux", nm, "M_earth Myr^-1",
+           "inward dust mass flow through each /pebbles/r_au", nullptr},
+          {"m_through", nm, "M_earth", "cumulative dust mass through each /pebbles/r_au",
+           nullptr},
+          {"mass_budget", sim.budget_terms().size() + 1, "M_earth",
+           "dust " + labels +
+               "|sum - initial| (columns; attribute mass_budget_columns of /timeseries)",
+           nullptr}};
+}
+
+std::vector<OutputAttribute> RunDiagnostics::timeseries_attributes(
+    const Simulation& sim) {
+  std::string names;
+  for (const auto& term : sim.budget_terms()) names += term.name + ";";
+  return {{"timeseries", "mass_budget_columns", "",
+           "names of the columns of mass_budget (;-separated), error last",
+           names + "error"}};
+}
+
+std::vector<OutputField> RunDiagnostics::summary_fields(const Simulation& sim) {
+  std::vector<OutputField> fields;
+  auto scalar = [&](const std::string& name, const std::string& units,
+                    const std::string& what) {
+    fields.push_back({name, 0, units, what, nullptr});
+  };
+  for (const std::string ch : {"coag", "si"}) {
+    scalar("m_pl_" + ch, "M_earth", "planetesimal mass formed by channel " + ch);
+    scalar("r_min_pl_" + ch, "au", "innermost cell with planetesimals (" + ch + ")");
+    scalar("r_max_pl_" + ch, "au", "outermost cell with planetesimals (" + ch + ")");
+  }
+  fields.push_back({kFirstFormation, static_cast<std::size_t>(sim.grid().n_cells()), "yr",
+                    "time of first planetesimal formation in each cell (NaN: never)",
+                    nullptr});
+  for (const PebbleMonitor& mon : sim.pebble_monitors())
+    if (const std::string key = summary_pebble_key(mon); !key.empty())
+      scalar(key, "M_earth", "pebble mass that crossed " + mon.name + " inward");
+  scalar("formed_threshold", "g cm^-2",
+         "Sigma_pl above which a cell counts as having formed planetesimals (1e-6 of the "
+         "largest initial Sigma_d)");
+  scalar("m_dust_final", "M_earth", "dust left on the grid");
+  scalar("budget_error", "",
+         "|sum of the budget terms (mass_budget_columns of /timeseries) - initial| / "
+         "initial");
+  return fields;
 }
 
 RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_start)
@@ -59,25 +119,9 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
 
   for (const OutputField& f : output_fields(sim))
     out_.add_field(f.name, f.width, f.units, f.description);
-  const std::size_t nm = sim.pebble_monitors().size();
-  out_.add_series("timeseries", "time", 0, "yr",
-                  "sample times (first CVODE step past each)");
-  out_.add_series("timeseries", "pebble_flux", nm, "M_earth Myr^-1",
-                  "inward dust mass flow through each /pebbles/r_au");
-  out_.add_series("timeseries", "m_through", nm, "M_earth",
-                  "cumulative dust mass through each /pebbles/r_au");
-  {  // one column per budget term (Simulation::budget_terms), then |sum - initial|
-    std::string labels, names;
-    for (const auto& term : sim.budget_terms()) {
-      labels += term.label + ", ";
-      names += term.name + ";";
-    }
-    out_.add_series("timeseries", "mass_budget", sim.budget_terms().size() + 1, "M_earth",
-                    "dust " + labels +
-                        "|sum - initial| (columns; attribute "
-                        "mass_budget_columns of /timeseries)");
-    out_.set_group_attr_string("timeseries", "mass_budget_columns", names + "error");
-  }
+  for (const OutputField& f : timeseries_fields(sim))
+    out_.add_series("timeseries", f.name, f.width, f.units, f.description);
+  for (const OutputAttribute& a : timeseries_attributes(sim)) out_.write_attribute(a);
   if (t_start > 0.0) {  // restart: keep what was sampled up to the checkpoint
     try {
       h5::Handle g = h5::open_group(out_.file(), "timeseries");
@@ -106,8 +150,8 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
         keep = i + 1;
       }
       h5::truncate_stack(g.get(), "time", keep);  // time first: rows need a time
-      for (const char* name : {"pebble_flux", "m_through", "mass_budget"})
-        h5::truncate_stack(g.get(), name, keep);
+      for (const OutputField& f : timeseries_fields(sim))
+        if (f.name != "time") h5::truncate_stack(g.get(), f.name, keep);
       lost_ = out_.keep_rows("timeseries", keep);
       out_.flush();  // the cut on disk now, not at the first snapshot: a shorter window
                      // in which a kill leaves the file half cut
@@ -188,10 +232,7 @@ std::string RunDiagnostics::finish(double t, std::span<const double> y) {
   std::ostringstream txt;
   const auto& grid = sim_.grid();
   const int n = grid.n_cells();
-  auto scalar = [&](const std::string& name, double v, const std::string& units,
-                    const std::string& what) {
-    out_.write_static("summary", name, std::vector<double>{v}, units, what);
-  };
+  std::map<std::string, std::vector<double>> values;  // of summary_fields()
   // planetesimals by channel: mass and radial range where Sigma_pl > the formed threshold
   const auto [coag, si] = sim_.planetesimal_mass(y);
   txt << "outcome at t = " << t / kYr << " yr:\n";
@@ -205,39 +246,32 @@ std::string RunDiagnostics::finish(double t, std::span<const double> y) {
         r_hi = grid.r_c(i) / units::kAu;
       }
     const double m = (c == 0 ? coag : si) / kMearth;
-    scalar("m_pl_" + ch, m, "M_earth", "planetesimal mass formed by channel " + ch);
-    scalar("r_min_pl_" + ch, r_lo, "au",
-           "innermost cell with planetesimals (" + ch + ")");
-    scalar("r_max_pl_" + ch, r_hi, "au",
-           "outermost cell with planetesimals (" + ch + ")");
+    values["m_pl_" + ch] = {m};
+    values["r_min_pl_" + ch] = {r_lo};
+    values["r_max_pl_" + ch] = {r_hi};
     txt << "  planetesimals ("
         << (c == 0 ? "direct coagulation" : "streaming instability") << "): " << m
         << " M_earth";
     if (!std::isnan(r_lo)) txt << " between " << r_lo << " and " << r_hi << " au";
     txt << "\n";
   }
-  std::vector<double> t_first(n);
+  std::vector<double>& t_first = values[kFirstFormation];
+  t_first.resize(n);
   for (int i = 0; i < n; ++i) t_first[i] = t_first_[i] / kYr;
-  out_.write_static("summary", "t_first_pl", t_first, "yr",
-                    "time of first planetesimal formation in each cell (NaN: never)");
   const auto mons = sim_.pebble_monitors();
   const auto mass = sim_.pebble_mass(y);
   for (std::size_t k = 0; k < mons.size(); ++k) {
-    if (mons[k].name != "snow line" && mons[k].name != "r_in") continue;
-    const std::string key = mons[k].name == "r_in" ? "m_peb_r_in" : "m_peb_snowline";
-    scalar(key, mass[k] / kMearth, "M_earth",
-           "pebble mass that crossed " + mons[k].name + " inward");
+    const std::string key = summary_pebble_key(mons[k]);
+    if (key.empty()) continue;
+    values[key] = {mass[k] / kMearth};
     txt << "  pebbles through " << mons[k].name << " (" << mons[k].r_au
         << " au): " << mass[k] / kMearth << " M_earth\n";
   }
-  scalar("formed_threshold", threshold_.empty() ? 0.0 : threshold_[0], "g cm^-2",
-         "Sigma_pl above which a cell counts as having formed planetesimals (1e-6 of the "
-         "largest initial Sigma_d)");
-  scalar("m_dust_final", sim_.dust_mass_on_grid(y) / kMearth, "M_earth",
-         "dust left on the grid");
-  scalar("budget_error", sim_.budget_error(y), "",
-         "|sum of the budget terms (mass_budget_columns of /timeseries) - initial| / "
-         "initial");
+  values["formed_threshold"] = {threshold_.empty() ? 0.0 : threshold_[0]};
+  values["m_dust_final"] = {sim_.dust_mass_on_grid(y) / kMearth};
+  values["budget_error"] = {sim_.budget_error(y)};
+  for (const OutputField& f : summary_fields(sim_))
+    out_.write_static("summary", f.name, values.at(f.name), f.units, f.description);
   txt << "  dust left on the grid: " << sim_.dust_mass_on_grid(y) / kMearth
       << " M_earth\n";
   out_.flush();

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "src/io/output_entry.hpp"
 #include "src/solver/physics_module.hpp"
 
 namespace panoptic {
@@ -34,6 +35,13 @@ class RunDiagnostics {
   //! (OutputField, filled from the run's history rather than from one state): the time of
   //! first planetesimal formation, when a channel is on.
   static std::vector<OutputField> output_fields(const Simulation& sim);
+  //! The /timeseries stacks the constructor declares and flush() appends to, and the
+  //! group's attribute (the names of the mass budget's columns): their one declaration.
+  static std::vector<OutputField> timeseries_fields(const Simulation& sim);
+  static std::vector<OutputAttribute> timeseries_attributes(const Simulation& sim);
+  //! The /summary datasets finish() writes, in its order (fill unused: finish() has the
+  //! values).
+  static std::vector<OutputField> summary_fields(const Simulation& sim);
   //! Adds the diagnostics' snapshot fields (output_fields) to `fields`.
   void add_snapshot_fields(std::map<std::string, std::vector<double>>& fields) const;
   //! Writes /summary and returns it as text for the terminal.

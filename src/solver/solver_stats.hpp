@@ -17,4 +17,24 @@ struct SolverStats {
   double h_last = 0.0;  //!< last step size [s]
 };
 
+//! One counter of SolverStats by name: the one list of them, in the order the output's
+//! /solver attributes and the checkpoints write them (and `panoptic reference --outputs`
+//! lists them).
+struct SolverCounter {
+  const char* name;
+  long SolverStats::*value;
+  const char* description;
+};
+
+inline constexpr SolverCounter kSolverCounters[] = {
+    {"nst", &SolverStats::nst, "CVODE steps"},
+    {"nfe", &SolverStats::nfe, "right-hand side evaluations"},
+    {"nje", &SolverStats::nje, "Jacobian evaluations"},
+    {"nsetups", &SolverStats::nsetups, "linear-solver set-ups (KLU factorisations)"},
+    {"netf", &SolverStats::netf, "error-test failures"},
+    {"nni", &SolverStats::nni, "nonlinear (Newton) iterations"},
+    {"nncf", &SolverStats::nncf, "nonlinear convergence failures"},
+    {"nreinit", &SolverStats::nreinit, "re-initialisations"},
+};
+
 }  // namespace panoptic

@@ -15,6 +15,7 @@
 #include "src/model/output_table.hpp"
 #include "src/model/simulation.hpp"
 #include "src/run/diagnostics.hpp"
+#include "src/run/output_reference.hpp"
 #include "src/scene/config.hpp"
 
 namespace fs = std::filesystem;
@@ -45,10 +46,7 @@ TEST(OutputTable, ListsEveryFieldOfAFiducialOutput) {
     RunDiagnostics diag(fiducial, out, 0.0);
     out.start_appending();  // the file set up aside moves into place
   }
-  const Simulation every(every_process_scene());
-  std::vector<OutputField> fields = every.output_fields();
-  for (OutputField& f : RunDiagnostics::output_fields(every)) fields.push_back(f);
-  const std::string table = output_table_markdown(every.static_fields(), fields);
+  const std::string table = output_reference_markdown();
 
   h5::quiet_errors();
   h5::Handle file = h5::open_file(path.string(), false);
