@@ -77,6 +77,13 @@ RunSnapshot read_run_snapshot(const std::string& file, double time_yr) {
       best = static_cast<long>(k);
   s.index = best;
   s.time_yr = times[best];
+  // the size distribution (model.kind = "distribution") writes sigma(r, m) and no phi:
+  // its opacities need the whole distribution, not the mass-dominating bin
+  if (h5::exists(snap.get(), "sigma"))
+    throw ConfigError(file +
+                      ": a run of the size distribution (model.kind = \"distribution\"): "
+                      "panoptic observe does not read size distributions yet (issue 35); "
+                      "observe a single-size run of the scene");
   s.sigma_d = row(snap.get(), "sigma_d", best, n, file);
   if (h5::exists(snap.get(), "a")) {
     s.a = row(snap.get(), "a", best, n, file);
