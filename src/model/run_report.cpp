@@ -16,6 +16,43 @@ namespace panoptic {
 
 using units::kAu;
 
+namespace {
+
+// What the particles do, said in the header of every single-size run: the process
+// switches default to off (params/README.md, Scenes), so a scene without [growth] runs
+// transport alone at a prescribed St, and one with growth alone sticks compact
+// particles at every speed; each off switch is named with its key.
+std::string physics_choices(const Config& cfg) {
+  if (cfg.str("model.kind") != "single_size") return "";
+  std::ostringstream s;
+  if (!cfg.flag("growth.enabled")) {
+    s << "growth: off (growth.enabled = false"
+      << (cfg.user_set("growth.enabled") ? "" : ", the default")
+      << "): no particle grows, St is prescribed: transport.St = "
+      << cfg.real("transport.St") << " at 1 au";
+    if (cfg.real("transport.St_slope") != 0.0)
+      s << " times (r/au)^" << cfg.real("transport.St_slope");
+    s << " (set growth.enabled = true to grow the particles from monomers)\n";
+    return s.str();
+  }
+  s << "growth: on, ";
+  if (cfg.flag("porosity.enabled"))
+    s << "porous";
+  else
+    s << "compact (phi = 1; porous with porosity.enabled = true)";
+  if (cfg.str("erosion.model") == "none" && !cfg.flag("fragmentation.enabled") &&
+      !cfg.flag("bouncing.enabled"))
+    s << "; particles stick at any speed (fragmentation.enabled = false, erosion.model = "
+         "\"none\", bouncing.enabled = false)";
+  if (!cfg.flag("planetesimals.coagulation") && cfg.str("planetesimals.si") == "none")
+    s << "; no planetesimal channel (planetesimals.coagulation = false, planetesimals.si "
+         "= \"none\")";
+  s << "\n";
+  return s.str();
+}
+
+}  // namespace
+
 std::string Simulation::summary() const {
   std::ostringstream s;
   const auto& L = *layout_;
@@ -60,7 +97,8 @@ std::string Simulation::summary() const {
   for (int k = 0; k < L.n_global_vars(); ++k) s << " " << L.global_var(k).name;
   s << "\nmodules:";
   for (const auto& m : model_->modules()) s << " " << m->name();
-  s << "\nJacobian: " << model_->pattern().nnz() << " structural non-zeros\n";
+  s << "\n" << physics_choices(cfg_);
+  s << "Jacobian: " << model_->pattern().nnz() << " structural non-zeros\n";
   s << "initial dust mass: " << dust_mass0_ / units::kMearth << " M_earth";
   // the cells' centre values against the profile's exact mass: second order in the width
   if (std::isfinite(profile_dust_mass_)) {
