@@ -10,6 +10,7 @@
 #include "disk/local_gas.hpp"
 #include "src/core/autodiff.hpp"
 #include "src/core/units.hpp"
+#include "tests/unit/support/expect_fields.hpp"
 
 namespace panoptic::physics {
 namespace {
@@ -33,14 +34,9 @@ TEST(LocalGas, DensityRatioMatchesTheGasBuiltAtTheScaledSigma) {
     EXPECT_LT(rel(s.mfp, fresh.mfp), 1e-14);
     EXPECT_LT(rel(s.nu_mol, fresh.nu_mol), 1e-14);
     EXPECT_LT(rel(s.reynolds(), fresh.reynolds()), 1e-14);
-    EXPECT_EQ(s.temperature, fresh.temperature);
-    EXPECT_EQ(s.c_s, fresh.c_s);
-    EXPECT_EQ(s.v_th, fresh.v_th);
-    EXPECT_EQ(s.omega_k, fresh.omega_k);
-    EXPECT_EQ(s.v_k, fresh.v_k);
-    EXPECT_EQ(s.h_g, fresh.h_g);
-    EXPECT_EQ(s.alpha, fresh.alpha);
-    EXPECT_EQ(s.eta, fresh.eta);
+    test_support::expect_fields_equal(s, fresh, &LocalGas::temperature, &LocalGas::c_s,
+                                      &LocalGas::v_th, &LocalGas::omega_k, &LocalGas::v_k,
+                                      &LocalGas::h_g, &LocalGas::alpha, &LocalGas::eta);
     EXPECT_EQ(s.v_r_gas, -123.0);
   }
 }

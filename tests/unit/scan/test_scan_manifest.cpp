@@ -11,6 +11,7 @@
 #include "src/core/error.hpp"
 #include "src/scan/scan_exec.hpp"
 #include "src/scan/scan_manifest.hpp"
+#include "tests/unit/support/expect_fields.hpp"
 
 namespace panoptic {
 namespace {
@@ -266,14 +267,9 @@ TEST(ScanManifest, TaskMessageCarriesTheRunsScene) {
   t.argv = {"/bin/panoptic", "run", "s.toml", "--set",
             "a.b=1",         "-o",  t.h5,     "--overwrite"};
   const ScanTask u = ScanTask::deserialize(t.serialize());
-  EXPECT_EQ(u.id, t.id);
-  EXPECT_EQ(u.name, t.name);
-  EXPECT_EQ(u.h5, t.h5);
-  EXPECT_EQ(u.log, t.log);
-  EXPECT_EQ(u.err, t.err);
-  EXPECT_EQ(u.status, t.status);
-  EXPECT_EQ(u.config_toml, t.config_toml);
-  EXPECT_EQ(u.argv, t.argv);
+  test_support::expect_fields_equal(u, t, &ScanTask::id, &ScanTask::name, &ScanTask::h5,
+                                    &ScanTask::log, &ScanTask::err, &ScanTask::status,
+                                    &ScanTask::config_toml, &ScanTask::argv);
 }
 
 TEST(ScanManifest, AxisAlsoFixedInSetIsAnErrorWithSpacesToo) {
