@@ -292,7 +292,13 @@ std::vector<std::string> seed_corpus() {
     std::ifstream in(entry.path(), std::ios::binary);
     std::stringstream text;
     text << in.rdbuf();
-    corpus.push_back(text.str());
+    // a scene with a base (params/bump.toml) reads it from its folder, which a text has
+    // not: its resolved scene stands for it
+    if (text.str().starts_with("base = ") ||
+        text.str().find("\nbase = ") != std::string::npos)
+      corpus.push_back(load_scene(entry.path()).resolved_toml());
+    else
+      corpus.push_back(text.str());
   }
   return corpus;
 }
