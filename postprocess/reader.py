@@ -1,7 +1,7 @@
 """Read a panoptic run file (HDF5) into numpy arrays.
 
 Layout (written by the C++ code):
-    /                attrs config_toml, git_sha, version, scene (str)
+    /                attrs config_toml, git_sha, version, scene, label, overrides (str)
     /grid/r_c, r_f   cell centres (N,) and faces (N+1,) [au]; /grid/area (N,) [cm^2]
     /disk/*          static gas-disk fields at cell centres (N,); attr r_snow_au
     /snapshots/*     time (nt,) [yr] and per-snapshot fields (nt, ...), e.g.
@@ -43,6 +43,7 @@ Usage:
     run.dust_mass()                         # (nt,) [g] (the snapshots' sum)
     run.to_xarray()                         # xarray.Dataset, dims t and r (if installed)
 """
+import json
 import os
 import tomllib
 import warnings
@@ -94,7 +95,8 @@ class Run:
                     others as arrays (t_first_pl (N,) [yr]); {} if absent
         units       dict dataset path ("snapshots/sigma_d", "grid/r_c", ...) -> unit str
         descriptions  dict dataset path -> `description` attribute str
-        attrs       root attributes as str (config_toml, git_sha, version, scene)
+        attrs       root attributes as str (config_toml, git_sha, version, scene, label,
+                    overrides)
         solver      dict of /solver attributes (empty for a killed run)
         config      the resolved scene, config_toml parsed with tomllib (empty if absent)
     """
@@ -134,8 +136,21 @@ class Run:
 
     @property
     def scene(self):
-        """Scene name (root attribute `scene`), "" if absent."""
-        return self.attrs.get("scene", "")
+        """The run's label: its scene's name with the overrides it ran with (root
+        attribute `label`, "fiducial+disk.sigma_1au=5100": src/run/README.md, Variants),
+        else the scene name (root attribute `scene`), "" if absent."""
+        return self.attrs.get("label") or self.attrs.get("scene", "")
+
+    @property
+    def overrides(self):
+        """The overrides the run applied on top of its scene file, in order (root
+        attribute `overrides`, a JSON list: a preset's items, then the --set items), []
+        if absent."""
+        text = self.attrs.get("overrides", "")
+        try:
+            return list(json.loads(text)) if text else []
+        except ValueError:
+            return []
 
     @property
     def n_snapshots(self):

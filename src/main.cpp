@@ -90,7 +90,8 @@ int run_command_line(int argc, char** argv) {
   run_cmd->add_option("--set", overrides, "override a scene key: table.key=value")
       ->take_all();
   run_cmd->add_option("-o,--output", args.output,
-                      "output file (default out/<scene>.h5; with --restart: the "
+                      "output file (default out/<scene>.h5, out/<scene>+<key>=<value>.h5 "
+                      "with --set; with --restart: the "
                       "checkpoint's)");
   auto* overwrite_opt =
       run_cmd->add_flag("--overwrite", args.overwrite, "replace an existing output file");
@@ -222,6 +223,7 @@ int run_command_line(int argc, char** argv) {
                           (cmd == run_cmd ? "out/<scene>.h5" : "<run>_obs.h5"));
     if (*run_cmd) {
       args.preset = fast ? "fast" : accurate ? "accurate" : "";
+      args.sets = overrides;
       overrides = with_preset(args.preset, overrides);
       args.max_wall_given = run_cmd->count("--max-wall") > 0;
       return run_scene(args);

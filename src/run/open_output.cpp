@@ -15,15 +15,24 @@ namespace fs = std::filesystem;
 
 namespace panoptic {
 
-fs::path default_output(const Config& cfg) {
+fs::path default_output(const Config& cfg, const std::string& label) {
   if (!cfg.str("output.file").empty()) return cfg.str("output.file");
-  return fs::path("out") / (cfg.file().stem().string() + ".h5");
+  return fs::path("out") / (label + ".h5");
 }
 
 RunOutput new_output(const Config& cfg, const Simulation& sim, const fs::path& path,
-                     bool overwrite) {
+                     bool overwrite, const Variant& variant) {
   const fs::path chk = checkpoint_path(path);
   std::error_code ec;
+  if (!overwrite && fs::exists(fs::symlink_status(path, ec)) &&
+      fs::is_regular_file(path, ec))
+    throw IoError(path.string() +
+                  ": output file exists (an earlier run's); write this run to another "
+                  "file with -o FILE, or replace it with --overwrite" +
+                  (is_checkpoint_file(chk)
+                       ? ", or continue that run with --restart " + chk.string() +
+                             " (with a later output.t_end_yr if it completed)"
+                       : std::string()));
   for (const fs::path& p : {chk, previous_checkpoint_path(chk)}) {
     if (!fs::exists(fs::symlink_status(p, ec))) continue;
     if (!is_checkpoint_file(p))
@@ -42,6 +51,8 @@ RunOutput new_output(const Config& cfg, const Simulation& sim, const fs::path& p
   RunOutput out(path, overwrite,
                 {cfg.file().stem().string(), cfg.resolved_toml(), PANOPTIC_GIT_SHA,
                  PANOPTIC_VERSION});
+  out.set_root_attr("label", variant.label);
+  out.set_root_attr("overrides", overrides_json(variant.overrides));
   sim.prepare_output(out);
   for (const fs::path& stale : {chk, previous_checkpoint_path(chk)})
     if (fs::remove(stale, ec))

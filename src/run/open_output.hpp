@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "src/io/run_output.hpp"
+#include "src/run/variant.hpp"
 
 namespace panoptic {
 
@@ -12,16 +13,19 @@ class Config;
 class Simulation;
 struct RestartPoint;
 
-//! output.file of the scene, else out/<scene stem>.h5.
-std::filesystem::path default_output(const Config& cfg);
+//! output.file of the scene, else out/<label>.h5 (`label`: variant_label(), the scene
+//! file's stem with the overrides).
+std::filesystem::path default_output(const Config& cfg, const std::string& label);
 
-//! A new output file with /grid, /disk and the snapshot fields declared. Checkpoints
-//! left next to it by a run it replaces are removed (they belong to that run), with
-//! --overwrite only, and only files panoptic wrote as checkpoints: anything else at
-//! those paths, or a checkpoint without --overwrite, stops the run before a file is
-//! touched (exit 4).
+//! A new output file with /grid, /disk, the snapshot fields declared and the variant's
+//! root attributes `label` and `overrides`. An existing output without --overwrite stops
+//! the run, naming it and the options (-o, --overwrite, --restart); checkpoints left next
+//! to it by a run it replaces are removed (they belong to that run), with --overwrite
+//! only, and only files panoptic wrote as checkpoints: anything else at those paths, or a
+//! checkpoint without --overwrite, stops the run before a file is touched (exit 4).
 RunOutput new_output(const Config& cfg, const Simulation& sim,
-                     const std::filesystem::path& path, bool overwrite);
+                     const std::filesystem::path& path, bool overwrite,
+                     const Variant& variant);
 
 //! The output of the checkpoint's run, reopened to continue it: `output` (-o) when
 //! given, else the file of the recorded name next to the checkpoint, else the recorded

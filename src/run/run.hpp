@@ -11,8 +11,10 @@ namespace panoptic {
 struct RunArgs {
   std::string program;  //!< argv[0], for the restart command we print
   std::string scene;
+  //! the overrides applied on top of the scene file: the preset's, then `sets`
   std::vector<std::string> overrides;
-  std::string output;  //!< -o
+  std::vector<std::string> sets;  //!< the --set items alone
+  std::string output;             //!< -o
   bool overwrite = false;
   std::string restart;   //!< --restart CHK.h5
   std::string max_wall;  //!< --max-wall DURATION

@@ -62,17 +62,26 @@ RunStart start_run(const RunArgs& a, const Config& cfg, Simulation& sim) {
       restart ? times_after_restart(sim.output_times(), restart->chk.t)
               : sim.output_times();
   // the output: new, or the checkpoint's run's file cut to the checkpoint's snapshots
-  const fs::path out_path = a.output.empty() ? default_output(cfg) : fs::path(a.output);
+  const Variant variant{variant_label(cfg.file().stem().string(), a.preset, a.sets),
+                        a.overrides};
+  const fs::path out_path =
+      a.output.empty() ? default_output(cfg, variant.label) : fs::path(a.output);
   refuse_output_is_input(out_path, a.scene, "the scene the run reads");
   if (restart)
     refuse_output_is_input(out_path, restart->path, "the checkpoint it restarts from");
   RunOutput out = restart ? continue_output(*restart, a.output, cfg, changed)
-                          : new_output(cfg, sim, out_path, a.overwrite);
+                          : new_output(cfg, sim, out_path, a.overwrite, variant);
   // a continued output's /grid, /disk and fields declared again: a field that the
   // restart's copy could not read is recreated (RunOutput::add_field)
   if (restart) sim.prepare_output(out);
-  std::printf("panoptic %s: scene %s -> %s\n%s", PANOPTIC_VERSION, a.scene.c_str(),
-              out.path().c_str(), sim.summary().c_str());
+  std::printf("panoptic %s: scene %s -> %s\n", PANOPTIC_VERSION, a.scene.c_str(),
+              out.path().c_str());
+  if (!restart && !a.overrides.empty()) {  // the variant: its label and its options
+    std::string options = a.preset.empty() ? "" : " --" + a.preset;
+    for (const std::string& s : a.sets) options += " --set " + s;
+    std::printf("variant %s:%s\n", variant.label.c_str(), options.c_str());
+  }
+  std::fputs(sim.summary().c_str(), stdout);
   if (restart)
     std::printf("restart from %s at t = %.6g yr (snapshot %ld)\n", restart->path.c_str(),
                 restart->chk.t / units::kYr, restart->chk.snapshot_index);
