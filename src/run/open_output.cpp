@@ -51,8 +51,7 @@ RunOutput new_output(const Config& cfg, const Simulation& sim, const fs::path& p
   RunOutput out(path, overwrite,
                 {cfg.file().stem().string(), cfg.resolved_toml(), PANOPTIC_GIT_SHA,
                  PANOPTIC_VERSION});
-  out.set_root_attr("label", variant.label);
-  out.set_root_attr("overrides", overrides_json(variant.overrides));
+  for (const OutputAttribute& a : variant_attributes(variant)) out.write_attribute(a);
   sim.prepare_output(out);
   for (const fs::path& stale : {chk, previous_checkpoint_path(chk)})
     if (fs::remove(stale, ec))

@@ -6,6 +6,7 @@
 #include "src/model/output_table.hpp"
 #include "src/model/simulation.hpp"
 #include "src/run/diagnostics.hpp"
+#include "src/run/variant.hpp"
 #include "src/solver/solver_stats.hpp"
 
 namespace panoptic {
@@ -17,6 +18,7 @@ std::string output_reference_markdown() {
     rows.insert(rows.end(), more.begin(), more.end());
   };
   add(output_entries(RunOutput::root_attributes({}, "")));
+  add(output_entries(variant_attributes({})));
   add(output_entries(every.static_fields()));
   add(output_entries(every.output_attributes()));
   rows.push_back(RunOutput::snapshot_time());

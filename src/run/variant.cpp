@@ -51,6 +51,16 @@ std::string variant_label(const std::string& scene_stem, const std::string& pres
   return label + "+set-" + hex;
 }
 
+std::vector<OutputAttribute> variant_attributes(const Variant& variant) {
+  return {{"", "label", "",
+           "the scene's name with the overrides of the run (src/run/README.md, Variants)",
+           variant.label},
+          {"", "overrides", "",
+           "the overrides applied on top of the scene file, in order (a preset's items, "
+           "then --set items), as a JSON list of \"table.key=value\" strings",
+           overrides_json(variant.overrides)}};
+}
+
 std::string overrides_json(std::span<const std::string> items) {
   std::string out = "[";
   for (std::size_t k = 0; k < items.size(); ++k) {

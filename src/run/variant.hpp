@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "src/io/output_entry.hpp"
+
 namespace panoptic {
 
 //! `scene_stem`, then "+<preset>" and "+<key>=<value>" for each --set item (blanks
@@ -26,6 +28,10 @@ struct Variant {
   std::string label;                   //!< variant_label(): the `label` root attribute
   std::vector<std::string> overrides;  //!< preset then --set items: `overrides`
 };
+
+//! The root attributes `label` and `overrides` of a new output (RunOutput::
+//! write_attribute; listed by `panoptic reference --outputs`).
+std::vector<OutputAttribute> variant_attributes(const Variant& variant);
 
 //! `items` as a JSON array of strings ("[]" when none): the `overrides` root attribute.
 std::string overrides_json(std::span<const std::string> items);
