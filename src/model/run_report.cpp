@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -66,6 +67,16 @@ std::string Simulation::summary() const {
       << " at r_out, stretch " << grid_.stretch() << ")\n";
   s << "gas disk: " << disk_->name()
     << (gas_.evolves() ? ", viscously evolving" : ", static") << ", ";
+  if (disk_->alpha_profile().kind != AlphaProfile::Kind::kConstant) {
+    // the range of alpha(r) the cells see (disk.alpha_profile; spec §1.5)
+    double lo = disk_->alpha(grid_.r_c(0)), hi = lo;
+    for (int i = 1; i < n; ++i) {
+      lo = std::min(lo, disk_->alpha(grid_.r_c(i)));
+      hi = std::max(hi, disk_->alpha(grid_.r_c(i)));
+    }
+    s << "alpha(r) " << cfg_.str("disk.alpha_profile") << " from " << lo << " to " << hi
+      << " on the grid, ";
+  }
   {  // the profile's gas on the grid's span (spec §1.2; for LBP, its share of M_disk)
     const double m_gas = disk_->mass_between(grid_.r_f(0), grid_.r_f(n));
     s << m_gas / units::kMsun << " M_sun between r_in and r_out";

@@ -90,7 +90,9 @@ def main():
     changes, mdot_errs = [], []
     for n in (100, 200):
         out = os.path.join(args.workdir, f"steady_{n}.h5")
-        run(args.exe, scene, out, [f"grid.n_cells={n}"])
+        p = run(args.exe, scene, out, [f"grid.n_cells={n}"])
+        checks.check("alpha(r) gaussian from 0.0005" in p.stdout,
+                     f"N = {n}: the run header gives the range of alpha(r)")
         change, mdot_err, r = measure(out)
         dip = np.argmin(np.abs(r.r_c - R0))
         print(f"N = {n}: alpha at 10 au {r.disk['alpha'][dip]:.3e}; inside 30 au after "
