@@ -11,6 +11,7 @@
 #include <span>
 
 #include "src/solver/physics_module.hpp"
+#include "src/solver/state_layout.hpp"
 
 namespace panoptic {
 
@@ -18,19 +19,21 @@ template <class Derived>
 class CellRangeForm : public PhysicsModule {
  public:
   void add_rhs(double t, std::span<const double> y, std::span<double> ydot) const final {
-    derived().add_rhs_cells(t, y, ydot, 0, n_cells_);
+    derived().add_rhs_cells(t, y, ydot, 0, layout_.n_cells());
   }
   void add_jacobian(double t, std::span<const double> y,
                     JacobianValues& jac) const final {
-    derived().add_jacobian_cells(t, y, jac, 0, n_cells_);
+    derived().add_jacobian_cells(t, y, jac, 0, layout_.n_cells());
   }
 
  protected:
-  explicit CellRangeForm(int n_cells) : n_cells_(n_cells) {}
+  explicit CellRangeForm(const StateLayout& layout) : layout_(layout) {}
+
+  //! The model's state layout, where the module finds its variables and the cells.
+  const StateLayout& layout_;
 
  private:
   const Derived& derived() const { return static_cast<const Derived&>(*this); }
-  int n_cells_;
 };
 
 }  // namespace panoptic

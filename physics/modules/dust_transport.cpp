@@ -16,8 +16,7 @@ DustTransport::DustTransport(StateLayout& layout, const Grid& grid, const GasDis
                              const GasColumn& gas, const ViscousStencil* viscous,
                              const StokesModel& stokes, DustTransportOptions options,
                              double sigma_scale, double dust_mass)
-    : CellRangeForm(grid.n_cells()),
-      layout_(layout),
+    : CellRangeForm(layout),
       grid_(grid),
       gas_(gas),
       stokes_(stokes),

@@ -108,7 +108,6 @@ class DustTransport : public CellRangeForm<DustTransport> {
   void received_flows(int f, const T* flows, T* received, T& sublimated,
                       bool inward) const;
 
-  const StateLayout& layout_;
   const Grid& grid_;
   const GasColumn& gas_;
   const StokesModel& stokes_;

@@ -62,7 +62,6 @@ class Planetesimals : public CellRangeForm<Planetesimals> {
   //! cell_rates_with on CellGas::at_ad (physics/modules/evolving_gas_ad.cpp).
   void cell_rates_ad_gas(int cell, const AD* yc, AD& coag, AD& si) const;
 
-  const StateLayout& layout_;
   const ParticleCodec& codec_;
   const CellGas& gas_;
   const StokesModel& stokes_;

@@ -159,8 +159,7 @@ PorousGrowth::PorousGrowth(StateLayout& layout, ParticleCodec& codec, const Cell
                            const GrowthStokes& stokes,
                            const std::vector<physics::Species>& species,
                            physics::GrowthOptions options, double sigma_scale)
-    : CellRangeForm(layout.n_cells()),
-      layout_(layout),
+    : CellRangeForm(layout),
       codec_(codec),
       gas_(gas),
       stokes_(stokes),

@@ -175,7 +175,6 @@ class PorousGrowth : public CellRangeForm<PorousGrowth> {
   template <class T>
   physics::ParticleRates<T> compute_rates(int cell, const T* yc) const;
 
-  const StateLayout& layout_;
   const ParticleCodec& codec_;
   const CellGas& gas_;
   //! St of the growth model's particles; its cache also holds the decoded m, phi and
