@@ -484,24 +484,36 @@ void set_attr(hid_t obj, const std::string& name, const std::string& value) {
   }
 }
 
-void set_attr(hid_t obj, const std::string& name, double value) {
+namespace {
+
+// A scalar attribute of file type `file_type`, written from `value` in `memory_type`
+// (replacing one of that name).
+void set_scalar_attr(hid_t obj, const std::string& name, hid_t file_type,
+                     hid_t memory_type, const void* value) {
   if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
   Handle space(ok(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
-  Handle attr(ok(H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
-                            H5P_DEFAULT),
-                 "creating attribute " + name),
+  Handle attr(
+      ok(H5Acreate2(obj, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+         "creating attribute " + name),
+      H5Aclose);
+  ok(H5Awrite(attr.get(), memory_type, value), "writing attribute", name);
+}
+
+// A scalar attribute read into `value` as `memory_type`.
+void get_scalar_attr(hid_t obj, const std::string& name, hid_t memory_type, void* value) {
+  Handle attr(ok(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "opening attribute " + name),
               H5Aclose);
-  ok(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, &value), "writing attribute", name);
+  ok(H5Aread(attr.get(), memory_type, value), "reading attribute", name);
+}
+
+}  // namespace
+
+void set_attr(hid_t obj, const std::string& name, double value) {
+  set_scalar_attr(obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
 }
 
 void set_attr(hid_t obj, const std::string& name, long value) {
-  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
-  Handle space(ok(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
-  Handle attr(ok(H5Acreate2(obj, name.c_str(), H5T_STD_I64LE, space.get(), H5P_DEFAULT,
-                            H5P_DEFAULT),
-                 "creating attribute " + name),
-              H5Aclose);
-  ok(H5Awrite(attr.get(), H5T_NATIVE_LONG, &value), "writing attribute", name);
+  set_scalar_attr(obj, name, H5T_STD_I64LE, H5T_NATIVE_LONG, &value);
 }
 
 std::string get_attr_string(hid_t obj, const std::string& name) {
@@ -516,18 +528,14 @@ std::string get_attr_string(hid_t obj, const std::string& name) {
 }
 
 double get_attr_double(hid_t obj, const std::string& name) {
-  Handle attr(ok(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "opening attribute " + name),
-              H5Aclose);
   double v = 0.0;
-  ok(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &v), "reading attribute", name);
+  get_scalar_attr(obj, name, H5T_NATIVE_DOUBLE, &v);
   return v;
 }
 
 long get_attr_long(hid_t obj, const std::string& name) {
-  Handle attr(ok(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "opening attribute " + name),
-              H5Aclose);
   long v = 0;
-  ok(H5Aread(attr.get(), H5T_NATIVE_LONG, &v), "reading attribute", name);
+  get_scalar_attr(obj, name, H5T_NATIVE_LONG, &v);
   return v;
 }
 

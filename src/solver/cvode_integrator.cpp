@@ -372,14 +372,7 @@ void CvodeIntegrator::reinit(double t, std::span<const double> y) {
 }
 
 void CvodeIntegrator::carry_stats(const SolverStats& before) {
-  before_.nst += before.nst;
-  before_.nfe += before.nfe;
-  before_.nje += before.nje;
-  before_.nsetups += before.nsetups;
-  before_.netf += before.netf;
-  before_.nni += before.nni;
-  before_.nncf += before.nncf;
-  before_.nreinit += before.nreinit;
+  for (const SolverCounter& c : kSolverCounters) before_.*c.value += before.*c.value;
   if (before_.h_last == 0.0) before_.h_last = before.h_last;
 }
 
@@ -397,15 +390,8 @@ SolverStats CvodeIntegrator::cvode_counters() const {
 }
 
 SolverStats CvodeIntegrator::stats() const {
-  SolverStats s = cvode_counters();
-  s.nst += before_.nst;
-  s.nfe += before_.nfe;
-  s.nje += before_.nje;
-  s.nsetups += before_.nsetups;
-  s.netf += before_.netf;
-  s.nni += before_.nni;
-  s.nncf += before_.nncf;
-  s.nreinit = before_.nreinit;
+  SolverStats s = cvode_counters();  // nreinit 0: CVODE does not count ours
+  for (const SolverCounter& c : kSolverCounters) s.*c.value += before_.*c.value;
   // Right after a reinit CVODE reports no last step: keep the one before.
   if (s.h_last == 0.0) s.h_last = before_.h_last;
   return s;

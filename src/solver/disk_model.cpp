@@ -24,6 +24,26 @@ long first_non_finite(std::span<const double> v) {
   return -1;
 }
 
+//! What a CVODE callback returns for `evaluate` (DiskModel::rhs_nothrow): 0 when it
+//! returns "", 1 (recoverable) when it returns the message of a non-finite result, -1
+//! (unrecoverable) when it throws; the message goes to `last_error`, an exception's
+//! prefixed with `what`.
+template <class Evaluate>
+int callback_status(const char* what, std::string& last_error,
+                    Evaluate&& evaluate) noexcept {
+  try {
+    std::string non_finite = evaluate();
+    if (non_finite.empty()) return 0;
+    last_error = std::move(non_finite);
+    return 1;
+  } catch (const std::exception& e) {
+    last_error = std::string(what) + ": " + e.what();
+  } catch (...) {
+    last_error = std::string(what) + ": unknown exception";
+  }
+  return -1;
+}
+
 }  // namespace
 
 DiskModel::DiskModel(std::shared_ptr<const StateLayout> layout,
@@ -71,43 +91,29 @@ std::string DiskModel::describe(long index, std::span<const double> y) const noe
 
 int DiskModel::rhs_nothrow(double t, std::span<const double> y,
                            std::span<double> ydot) noexcept {
-  try {
+  return callback_status("right-hand side", last_error_, [&]() -> std::string {
     rhs(t, y, ydot);
-    if (const long i = first_non_finite(ydot); i >= 0) {
-      last_error_ = "non-finite right-hand side for " + describe(i, y);
-      return 1;
-    }
-    return 0;
-  } catch (const std::exception& e) {
-    last_error_ = std::string("right-hand side: ") + e.what();
-  } catch (...) {
-    last_error_ = "right-hand side: unknown exception";
-  }
-  return -1;
+    if (const long i = first_non_finite(ydot); i >= 0)
+      return "non-finite right-hand side for " + describe(i, y);
+    return "";
+  });
 }
 
 int DiskModel::jacobian_nothrow(double t, std::span<const double> y,
                                 std::span<double> values) noexcept {
-  try {
+  return callback_status("Jacobian", last_error_, [&]() -> std::string {
     jacobian(t, y, values);
-    if (const long k = first_non_finite(values); k >= 0) {
-      // the row of value k: the column is the one whose range holds k
-      const auto cols = pattern_.col_ptr();
-      const long col = static_cast<long>(std::upper_bound(cols.begin(), cols.end(), k) -
-                                         cols.begin()) -
-                       1;
-      last_error_ = "non-finite Jacobian entry d(" +
-                    describe(static_cast<long>(pattern_.row_index()[k]), y) + ")/d(" +
-                    layout_->describe(col) + ")";
-      return 1;
-    }
-    return 0;
-  } catch (const std::exception& e) {
-    last_error_ = std::string("Jacobian: ") + e.what();
-  } catch (...) {
-    last_error_ = "Jacobian: unknown exception";
-  }
-  return -1;
+    const long k = first_non_finite(values);
+    if (k < 0) return "";
+    // the row of value k: the column is the one whose range holds k
+    const auto cols = pattern_.col_ptr();
+    const long col =
+        static_cast<long>(std::upper_bound(cols.begin(), cols.end(), k) - cols.begin()) -
+        1;
+    return "non-finite Jacobian entry d(" +
+           describe(static_cast<long>(pattern_.row_index()[k]), y) + ")/d(" +
+           layout_->describe(col) + ")";
+  });
 }
 
 }  // namespace panoptic

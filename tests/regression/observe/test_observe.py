@@ -219,21 +219,19 @@ def main():
     with open(text, "w") as fh:
         fh.write("not hdf5\n")
     ring_obs = os.path.join(wd, "ring_obs_0.h5")   # HDF5, but not a run
-    base = ["--time-yr", "10", "--lambda-mm", "1.3", "--a-cm", "0.01"]
+    def at(time_yr="10", lambda_mm="1.3"):
+        """The options of one observation of a sized run (the bad input is in them)."""
+        return ["--time-yr", time_yr, "--lambda-mm", lambda_mm, "--a-cm", "0.01"]
+
+    base = at()
     cases = [
-        ("negative wavelength", ring, ["--time-yr", "10", "--lambda-mm", "1.3,-1",
-                                       "--a-cm", "0.01"], "--lambda-mm"),
-        ("wavelength not a number", ring, ["--time-yr", "10", "--lambda-mm", "1.3,abc",
-                                           "--a-cm", "0.01"], "abc"),
-        ("wavelength outside the tables", ring, ["--time-yr", "10", "--lambda-mm", "0.1",
-                                                 "--a-cm", "0.01"], "optical-constant"),
+        ("negative wavelength", ring, at(lambda_mm="1.3,-1"), "--lambda-mm"),
+        ("wavelength not a number", ring, at(lambda_mm="1.3,abc"), "abc"),
+        ("wavelength outside the tables", ring, at(lambda_mm="0.1"), "optical-constant"),
         # the silicate table ends at 99.987 mm (the ice table at 110)
-        ("beyond the silicate table", ring, ["--time-yr", "10", "--lambda-mm", "100",
-                                             "--a-cm", "0.01"], "silicate 0.29999 - 99.987"),
-        ("time after the run", ring, ["--time-yr", "1e5", "--lambda-mm", "1.3",
-                                      "--a-cm", "0.01"], "outside the run"),
-        ("negative time", ring, ["--time-yr", "-5", "--lambda-mm", "1.3",
-                                 "--a-cm", "0.01"], "outside the run"),
+        ("beyond the silicate table", ring, at(lambda_mm="100"), "silicate 0.29999 - 99.987"),
+        ("time after the run", ring, at(time_yr="1e5"), "outside the run"),
+        ("negative time", ring, at(time_yr="-5"), "outside the run"),
         ("not HDF5", text, base, "not an HDF5 file"),
         ("HDF5 but not a run", ring_obs, base, "not a panoptic run"),
         ("missing file", os.path.join(wd, "nope.h5"), base, "no such file"),

@@ -63,19 +63,28 @@ def check_where_conversion_slows(c, r, scale, what):
                         f"asserted)")
 
 
+def check_si_rate(c, args, name, sets, label, what):
+    """Runs SCENE with `sets` (output <workdir>/<name>.h5); checks (`what`) that the SI
+    conversion rate of cell 1 over the first snapshot interval is zeta Sigma_d Omega_K,
+    zeta = 0.01, to 0.5%. Returns the run."""
+    out = f"{args.workdir}/{name}.h5"
+    run(args.exe, SCENE, out, sets)
+    r = load_run(out)
+    s = r.snapshots
+    rate = s["sigma_pl_si"][1][1] / (r.time[1] * YR)
+    expect = 0.01 * s["sigma_d"][0][1] * omega(r)
+    print(f"{label}: conversion rate {rate:.4e} g cm^-2 s^-1, zeta Sigma_d Omega = {expect:.4e}")
+    c.check(abs(rate / expect - 1) < 0.005, what)
+    return r
+
+
 def main():
     args = parse_args()
     c = Checks()
 
     # 1. triggered: rho_d/rho_g = 7.3 Z = 2.2 at Z = 0.3 (St = 0.05, alpha = 1e-3)
-    out = f"{args.workdir}/si_on.h5"
-    run(args.exe, SCENE, out, ["dust.dust_to_gas=0.3"])
-    r = load_run(out)
-    s = r.snapshots
-    rate = s["sigma_pl_si"][1][1] / (r.time[1] * YR)
-    expect = 0.01 * s["sigma_d"][0][1] * omega(r)
-    print(f"SI d16: conversion rate {rate:.4e} g cm^-2 s^-1, zeta Sigma_d Omega = {expect:.4e}")
-    c.check(abs(rate / expect - 1) < 0.005, "SI rate = zeta Sigma_d Omega_K to 0.5% (finite difference over the snapshots: 0.29%)")
+    r = check_si_rate(c, args, "si_on", ["dust.dust_to_gas=0.3"], "SI d16",
+                      "SI rate = zeta Sigma_d Omega_K to 0.5% (finite difference over the snapshots: 0.29%)")
     check_where_conversion_slows(c, r, h_over_hd(0.05, 1e-3), "rho_d/rho_g")
 
     # 2. not triggered: rho_d/rho_g = 0.22 (Z = 0.03); St = 0.003 < 0.01 at rho_d/rho_g ~ 2
@@ -108,15 +117,9 @@ def main():
     # 4. zcrit at St = 0.05: Z_crit = 10^(0.10 * 1.30103^2 - 0.07 * 1.30103 - 2.36)
     x = np.log10(0.05)
     z_crit = 10 ** (0.10 * x * x + 0.07 * x - 2.36)
-    out = f"{args.workdir}/zcrit_on.h5"
     # Z = 0.02: rho_d/rho_g = 0.15, so d16 would not trigger; zcrit does
-    run(args.exe, SCENE, out, ['planetesimals.si="zcrit"', "dust.dust_to_gas=0.02"])
-    r = load_run(out)
-    s = r.snapshots
-    rate = s["sigma_pl_si"][1][1] / (r.time[1] * YR)
-    expect = 0.01 * s["sigma_d"][0][1] * omega(r)
-    print(f"SI zcrit: conversion rate {rate:.4e} g cm^-2 s^-1, zeta Sigma_d Omega = {expect:.4e}")
-    c.check(abs(rate / expect - 1) < 0.005, "zcrit rate = zeta Sigma_d Omega_K to 0.5% (measured 0.28%)")
+    r = check_si_rate(c, args, "zcrit_on", ['planetesimals.si="zcrit"', "dust.dust_to_gas=0.02"],
+                      "SI zcrit", "zcrit rate = zeta Sigma_d Omega_K to 0.5% (measured 0.28%)")
     check_where_conversion_slows(c, r, 1 / z_crit, "Z/Z_crit")
     out = f"{args.workdir}/zcrit_off.h5"
     run(args.exe, SCENE, out, ['planetesimals.si="zcrit"', "dust.dust_to_gas=0.001"])
