@@ -86,7 +86,9 @@ int run_command_line(int argc, char** argv) {
   std::vector<std::string>& overrides = args.overrides;
 
   auto* run_cmd = app.add_subcommand("run", "run a scene and write its HDF5 output");
-  run_cmd->add_option("scene", scene, "scene file (TOML)")->required();
+  run_cmd->add_option("scene", scene,
+                      "scene file (TOML); with --restart it may be left out: the "
+                      "checkpoint holds the scene");
   run_cmd->add_option("--set", overrides, "override a scene key: table.key=value")
       ->take_all();
   run_cmd->add_option("-o,--output", args.output,
@@ -221,6 +223,10 @@ int run_command_line(int argc, char** argv) {
                                       "variable?); give a file name, or leave -o out for "
                                       "the default ") +
                           (cmd == run_cmd ? "out/<scene>.h5" : "<run>_obs.h5"));
+    if (*run_cmd && scene.empty() && args.restart.empty())
+      throw ConfigError(
+          "panoptic run: a scene file is required (panoptic run SCENE.toml), or "
+          "--restart CHK.h5 to continue a run from its checkpoint");
     if (*run_cmd) {
       args.preset = fast ? "fast" : accurate ? "accurate" : "";
       args.sets = overrides;

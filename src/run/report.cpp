@@ -26,8 +26,10 @@ std::string restart_command(const RunArgs& a, const fs::path& chk) {
     for (const char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
   };
-  std::string cmd =
-      quote(a.program) + " run " + quote(a.scene) + " --restart " + quote(chk.string());
+  // with no scene file: the checkpoint holds the scene, its --set options included
+  std::string cmd = quote(a.program) + " run " +
+                    (a.scene.empty() ? "" : quote(a.scene) + " ") + "--restart " +
+                    quote(chk.string());
   for (const std::string& s : a.overrides) cmd += " --set " + quote(s);
   if (!a.output.empty()) cmd += " -o " + quote(a.output);
   return cmd;

@@ -13,6 +13,18 @@
 namespace fs = std::filesystem;
 
 namespace panoptic {
+namespace {
+
+// Why a checkpoint's stored scene cannot be continued: `e`, its load in this version.
+std::string stored_scene_refusal(const Checkpoint& chk, const ConfigError& e) {
+  return std::string(
+             "the scene stored in the checkpoint does not load in this version "
+             "of panoptic (" PANOPTIC_VERSION ", " PANOPTIC_GIT_SHA "):\n") +
+         e.what() + "\nrestart with the version that wrote it, panoptic " + chk.version +
+         " (" + chk.git_sha + ")";
+}
+
+}  // namespace
 
 RestartPoint load_restart_point(const fs::path& path) {
   try {
@@ -32,6 +44,19 @@ RestartPoint load_restart_point(const fs::path& path) {
                     "\n  neither can be used: start the run again without --restart");
     }
   }
+}
+
+Config checkpoint_scene(const RestartPoint& restart,
+                        std::span<const std::string> overrides) {
+  const Checkpoint& chk = restart.chk;
+  std::string name = resolved_scene_file(chk.config_toml);
+  if (name.empty()) name = restart.path.string() + " (its stored scene)";
+  try {
+    load_scene_text(chk.config_toml, name);
+  } catch (const ConfigError& e) {
+    throw ConfigError(restart.path.string() + ": " + stored_scene_refusal(chk, e));
+  }
+  return load_scene_text(chk.config_toml, name, overrides);
 }
 
 bool may_change_on_restart(std::string_view key) {
@@ -69,12 +94,7 @@ std::vector<std::string> check_compatible(const Checkpoint& chk, const fs::path&
   try {
     before = load_scene_text(chk.config_toml, chk_name + " (its stored scene)");
   } catch (const ConfigError& e) {
-    throw ConfigError(chk_name +
-                      ": the scene stored in the checkpoint does not load in this "
-                      "version of panoptic (" PANOPTIC_VERSION ", " PANOPTIC_GIT_SHA
-                      "):\n" +
-                      e.what() + "\nrestart with the version that wrote it, panoptic " +
-                      chk.version + " (" + chk.git_sha + ")");
+    throw ConfigError(chk_name + ": " + stored_scene_refusal(chk, e));
   }
   std::string differing;
   std::string example;

@@ -28,6 +28,13 @@ struct RestartPoint {
 //! IoError naming both files when neither can be used.
 RestartPoint load_restart_point(const std::filesystem::path& path);
 
+//! The scene of a restart given no scene file (`panoptic run --restart CHK`): the
+//! checkpoint's stored scene, named as the scene file of the run that wrote it (its
+//! first line), with `overrides` (--set) over it. ConfigError naming the checkpoint when
+//! the stored scene does not load in this version, or naming the --set item.
+Config checkpoint_scene(const RestartPoint& restart,
+                        std::span<const std::string> overrides);
+
 //! True for the keys a restart may change: output times and the output file, solver
 //! settings, checkpoint settings, [meta]. Everything else (grid, disk, processes,
 //! initial condition, ...) defines the state being continued.

@@ -25,6 +25,7 @@
 #include "src/run/max_wall.hpp"
 #include "src/run/progress.hpp"
 #include "src/run/report.hpp"
+#include "src/run/restart.hpp"
 #include "src/run/start.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
@@ -49,7 +50,11 @@ int run_scene(const RunArgs& a) {
   // arrived meanwhile is delivered here.
   install_stop_handlers(SecondStop::kUnlessFromParent);
   block_stop_signals(false);
-  const Config cfg = load_scene(a.scene, a.overrides);
+  // the scene: the file, or with --restart alone the checkpoint's (read here first)
+  std::optional<RestartPoint> restart;
+  if (a.scene.empty()) restart = load_restart_point(a.restart);
+  const Config cfg = restart ? checkpoint_scene(*restart, a.overrides)
+                             : load_scene(a.scene, a.overrides);
   validate_scene(cfg);
   warn_unused_keys(cfg);
   const double max_wall = a.max_wall_given ? parse_duration(a.max_wall) : 0.0;
@@ -57,7 +62,7 @@ int run_scene(const RunArgs& a) {
   const StateLayout& layout = sim.model().layout();
   // 2 open or restart the output: every difference between a new run and a restart is
   // decided in start_run; the steps below treat both alike
-  RunStart start_point = start_run(a, cfg, sim);
+  RunStart start_point = start_run(a, cfg, sim, std::move(restart));
   RunOutput& out = start_point.out;
   const std::vector<double>& times = start_point.times;
   const std::vector<double>& y0 = start_point.y0;
@@ -171,6 +176,12 @@ int run_scene(const RunArgs& a) {
         "is checkpointed in %s\nrestart with: %s\n",
         stop.reason.c_str(), cvode.time() / units::kYr, last.snapshot_index,
         last.t / units::kYr, chk_path.c_str(), restart_command(a, chk_path).c_str());
+    if (!a.scene.empty()) {  // the checkpoint holds the scene, --set options included
+      RunArgs alone;
+      alone.program = a.program;
+      std::printf("or, from the checkpoint alone: %s\n",
+                  restart_command(alone, chk_path).c_str());
+    }
   } catch (const SolverError&) {
     progress.done();
     out.write_solver(cvode.stats(), wall0 + seconds_since(start), "failed");

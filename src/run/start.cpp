@@ -21,8 +21,10 @@ namespace {
 //! The checkpoint of --restart, checked against the scene; the keys the restart
 //! changes (output times, solver settings) in `changed`.
 RestartPoint restart_point(const RunArgs& a, const Config& cfg, const Simulation& sim,
-                           std::vector<std::string>& changed) {
-  RestartPoint restart = load_restart_point(a.restart);
+                           std::vector<std::string>& changed,
+                           std::optional<RestartPoint> preloaded) {
+  RestartPoint restart =
+      preloaded ? std::move(*preloaded) : load_restart_point(a.restart);
   if (!restart.fallback_note.empty())
     std::fprintf(stderr,
                  "panoptic: %s\npanoptic: restarting from the previous checkpoint %s "
@@ -53,11 +55,13 @@ RestartPoint restart_point(const RunArgs& a, const Config& cfg, const Simulation
 
 }  // namespace
 
-RunStart start_run(const RunArgs& a, const Config& cfg, Simulation& sim) {
+RunStart start_run(const RunArgs& a, const Config& cfg, Simulation& sim,
+                   std::optional<RestartPoint> preloaded) {
   // the restart point; the snapshot times are then those of the scene after its time
   std::optional<RestartPoint> restart;
   std::vector<std::string> changed;
-  if (!a.restart.empty()) restart = restart_point(a, cfg, sim, changed);
+  if (!a.restart.empty())
+    restart = restart_point(a, cfg, sim, changed, std::move(preloaded));
   std::vector<double> times =
       restart ? times_after_restart(sim.output_times(), restart->chk.t)
               : sim.output_times();
@@ -74,8 +78,8 @@ RunStart start_run(const RunArgs& a, const Config& cfg, Simulation& sim) {
   // a continued output's /grid, /disk and fields declared again: a field that the
   // restart's copy could not read is recreated (RunOutput::add_field)
   if (restart) sim.prepare_output(out);
-  std::printf("panoptic %s: scene %s -> %s\n", PANOPTIC_VERSION, a.scene.c_str(),
-              out.path().c_str());
+  std::printf("panoptic %s: scene %s%s -> %s\n", PANOPTIC_VERSION, cfg.file().c_str(),
+              a.scene.empty() ? " (stored in the checkpoint)" : "", out.path().c_str());
   if (!restart && !a.overrides.empty()) {  // the variant: its label and its options
     std::string options = a.preset.empty() ? "" : " --" + a.preset;
     for (const std::string& s : a.sets) options += " --set " + s;

@@ -34,7 +34,10 @@ struct RunStart {
 //! output (new, or the checkpoint's run's file cut to its snapshots, its fields declared
 //! again) and the initial state; prints the run's banner. Throws before any file is
 //! touched when the scene cannot continue the checkpoint.
-RunStart start_run(const RunArgs& a, const Config& cfg, Simulation& sim);
+//! `preloaded`: the restart point when run_scene has read it already (a restart given no
+//! scene file takes its scene from it).
+RunStart start_run(const RunArgs& a, const Config& cfg, Simulation& sim,
+                   std::optional<RestartPoint> preloaded);
 
 //! After a restart, once the diagnostics have read the kept rows: the rows the output
 //! lost before it (a run killed while HDF5 flushed the file), said aloud and recorded in

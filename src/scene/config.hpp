@@ -58,6 +58,10 @@ class Config {
   std::map<std::string, ValueOrigin, std::less<>> origins_;
 };
 
+//! The scene file named in the first line of a resolved scene (Config::resolved_toml),
+//! "" when `resolved` does not start with that line.
+std::string resolved_scene_file(std::string_view resolved);
+
 //! Reads and validates a scene. `overrides` are "table.key=value" strings (--set), where
 //! value is a TOML literal, or a bare word taken as a string. Unknown keys, wrong types,
 //! out-of-range values, unknown choices and malformed TOML (even arbitrary bytes) throw

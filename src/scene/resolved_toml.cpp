@@ -10,6 +10,22 @@
 
 namespace panoptic {
 using namespace scene_detail;
+namespace {
+
+// The first line of a resolved scene, around the scene file's name.
+constexpr std::string_view kHead = "# The resolved scene ";
+constexpr std::string_view kTail = ": every key, defaults included.\n";
+
+}  // namespace
+
+std::string resolved_scene_file(std::string_view resolved) {
+  if (!resolved.starts_with(kHead)) return "";
+  const std::size_t end = resolved.find(kTail);
+  const std::size_t line_end = resolved.find('\n');
+  if (end == std::string_view::npos || end + kTail.size() != line_end + 1)  // line 1
+    return "";
+  return std::string(resolved.substr(kHead.size(), end - kHead.size()));
+}
 
 std::string Config::resolved_toml() const {
   std::vector<KeyLine> lines;
@@ -39,8 +55,7 @@ std::string Config::resolved_toml() const {
                 comment});
   }
   constexpr size_t kMaxAlign = 40;  // long values do not push every comment right
-  return "# The resolved scene " + comment_safe(file_.string()) +
-         ": every key, defaults included.\n"
+  return std::string(kHead) + comment_safe(file_.string()) + std::string(kTail) +
          "# \"(default)\" marks a key the scene did not set, \"(from FILE)\" one a base "
          "scene set,\n"
          "# \"(--set)\" an override, \"(not read: ...)\" one this run does not read "
