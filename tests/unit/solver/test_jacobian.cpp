@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "src/model/simulation.hpp"
@@ -48,61 +50,92 @@ St_slope = 0.3
   return load_scene_text(text, "jacobian_test.toml", overrides);
 }
 
+//! The checks of one comparison with finite differences (its errors printed first): the
+//! row-scaled error below `row_tolerance`, every entry's below kEntryTolerance, no
+//! finite-difference non-zero outside the pattern; failures name `label` and `seed`.
+void expect_matches_fd(const JacobianCheck& c, const StateLayout& L,
+                       const std::string& label, unsigned seed, double row_tolerance) {
+  print_errors(label, seed, c.max_rel_err, c.max_entry_err);
+  EXPECT_LT(c.max_rel_err, row_tolerance)
+      << label << ", seed " << seed << ": worst d(" << L.describe(c.worst_row) << ")/d("
+      << L.describe(c.worst_col) << "): analytic " << c.worst_analytic << ", FD "
+      << c.worst_fd;
+  EXPECT_LT(c.max_entry_err, kEntryTolerance)
+      << label << ", seed " << seed << ": d(" << L.describe(c.entry_row) << ")/d("
+      << L.describe(c.entry_col) << ")";
+  EXPECT_EQ(c.outside_pattern, 0) << label << ", seed " << seed;
+}
+
 void expect_exact(const std::vector<std::string>& overrides, const char* label) {
   Simulation sim(scene(overrides));
   for (unsigned seed : {1u, 2u, 3u}) {
     const auto c = compare_with_fd(sim, perturbed_state(sim, seed));
-    const auto& L = sim.model().layout();
-    print_errors(label, seed, c.max_rel_err, c.max_entry_err);
-    EXPECT_LT(c.max_rel_err, 1e-7)
-        << label << ", seed " << seed << ": worst d(" << L.describe(c.worst_row) << ")/d("
-        << L.describe(c.worst_col) << "): analytic " << c.worst_analytic << ", FD "
-        << c.worst_fd;
-    EXPECT_LT(c.max_entry_err, kEntryTolerance)
-        << label << ", seed " << seed << ": d(" << L.describe(c.entry_row) << ")/d("
-        << L.describe(c.entry_col) << ")";
-    EXPECT_EQ(c.outside_pattern, 0) << label << ", seed " << seed;
+    expect_matches_fd(c, sim.model().layout(), label, seed, 1e-7);
     EXPECT_GT(c.nnz_fd, 0) << label;
   }
 }
 
 }  // namespace
 
-TEST(Jacobian, TransportDriftAndDiffusion) { expect_exact({}, "drift + diffusion"); }
+namespace {
 
-TEST(Jacobian, DiffusionAlone) {
-  expect_exact({"transport.drift=false"}, "diffusion alone");
+//! One check of the table-driven cases below, registered as the test Jacobian.<name>:
+//! the scene's --set overrides and the label its errors are printed with.
+struct JacobianCase {
+  const char* name;
+  std::vector<std::string> overrides;
+  const char* label;
+};
+
+class JacobianCaseTest : public ::testing::Test {
+ public:
+  explicit JacobianCaseTest(std::function<void()> body) : body_(std::move(body)) {}
+  void TestBody() override { body_(); }
+
+ private:
+  std::function<void()> body_;
+};
+
+//! Registers Jacobian.<name> for every case, each running check(overrides, label): a
+//! table of cases instead of a TEST that repeats the call for each.
+template <class Check>
+bool register_jacobian_cases(const std::vector<JacobianCase>& cases, Check check) {
+  for (const JacobianCase& c : cases)
+    ::testing::RegisterTest(
+        "Jacobian", c.name, nullptr, nullptr, __FILE__, __LINE__,
+        [c, check]() -> ::testing::Test* {
+          return new JacobianCaseTest([c, check] { check(c.overrides, c.label); });
+        });
+  return true;
 }
 
-TEST(Jacobian, DriftAlone) { expect_exact({"transport.diffusion=false"}, "drift alone"); }
+// The transport and the gas.
+const bool kTransportCases = register_jacobian_cases(
+    {
+        {"TransportDriftAndDiffusion", {}, "drift + diffusion"},
+        {"DiffusionAlone", {"transport.drift=false"}, "diffusion alone"},
+        {"DriftAlone", {"transport.diffusion=false"}, "drift alone"},
+        // The limited (van Leer) advection widens the stencil to the far upwind cell:
+        // its entries come from the limiter's analytic derivative, checked here against
+        // FD on states perturbed by +-30 % per cell, so both branches of the limiter
+        // (ab > 0 and ab <= 0) occur.
+        {"DriftVanLeer",
+         {"transport.diffusion=false", "transport.advection=\"van_leer\""},
+         "drift alone, van Leer"},
+        {"DriftAndDiffusionVanLeerEvolvingGas",
+         {"transport.advection=\"van_leer\"", "gas.evolve=true"},
+         "drift + diffusion + viscous gas, van Leer"},
+        {"ViscousGasAlone",
+         {"gas.evolve=true", "transport.drift=false", "transport.diffusion=false"},
+         "viscous gas alone"},
+        {"ViscousGasAndDustTogether", {"gas.evolve=true"}, "viscous gas + dust"},
+        {"LbpDiskWithEvolvingGas",
+         {"gas.evolve=true", "disk.model=\"lbp\"", "disk.r_c_au=20.0"},
+         "lbp + viscous gas"},
+    },
+    expect_exact);
 
-// The limited (van Leer) advection widens the stencil to the far upwind cell: its
-// entries come from the limiter's analytic derivative, checked here against FD on states
-// perturbed by +-30 % per cell, so both branches of the limiter (ab > 0 and ab <= 0)
-// occur.
-TEST(Jacobian, DriftVanLeer) {
-  expect_exact({"transport.diffusion=false", "transport.advection=\"van_leer\""},
-               "drift alone, van Leer");
-}
-
-TEST(Jacobian, DriftAndDiffusionVanLeerEvolvingGas) {
-  expect_exact({"transport.advection=\"van_leer\"", "gas.evolve=true"},
-               "drift + diffusion + viscous gas, van Leer");
-}
-
-TEST(Jacobian, ViscousGasAlone) {
-  expect_exact({"gas.evolve=true", "transport.drift=false", "transport.diffusion=false"},
-               "viscous gas alone");
-}
-
-TEST(Jacobian, ViscousGasAndDustTogether) {
-  expect_exact({"gas.evolve=true"}, "viscous gas + dust");
-}
-
-TEST(Jacobian, LbpDiskWithEvolvingGas) {
-  expect_exact({"gas.evolve=true", "disk.model=\"lbp\"", "disk.r_c_au=20.0"},
-               "lbp + viscous gas");
-}
+}  // namespace
 
 namespace {
 
@@ -134,104 +167,78 @@ void expect_exact_growth(const std::vector<std::string>& overrides, const char* 
     const std::vector<double> y = grown_state(sim, seed);
     if (refresh) sim.refresh_local_gas(y);
     const auto c = compare_with_fd(sim, y);
-    const auto& L = sim.model().layout();
-    print_errors(label, seed, c.max_rel_err, c.max_entry_err);
-    EXPECT_LT(c.max_rel_err, 1e-7)  // measured at most 1.4e-8
-        << label << ", seed " << seed << ": worst d(" << L.describe(c.worst_row) << ")/d("
-        << L.describe(c.worst_col) << "): analytic " << c.worst_analytic << ", FD "
-        << c.worst_fd;
-    EXPECT_LT(c.max_entry_err, kEntryTolerance)
-        << label << ", seed " << seed << ": d(" << L.describe(c.entry_row) << ")/d("
-        << L.describe(c.entry_col) << ")";
-    EXPECT_EQ(c.outside_pattern, 0) << label << ", seed " << seed;
+    expect_matches_fd(c, sim.model().layout(), label, seed,
+                      1e-7);  // measured at most 1.4e-8
   }
 }
 
 }  // namespace
 
-TEST(Jacobian, GrowthCompactParticles) { expect_exact_growth({}, "growth, phi = 1"); }
+namespace {
 
-TEST(Jacobian, GrowthPorous) {
-  expect_exact_growth({"porosity.enabled=true"}, "porous growth");
-}
+// The growth model, its outcomes and the planetesimal channels.
+const bool kGrowthCases = register_jacobian_cases(
+    {
+        {"GrowthCompactParticles", {}, "growth, phi = 1"},
+        {"GrowthPorous", {"porosity.enabled=true"}, "porous growth"},
+        {"GrowthPorousErosionHalt",
+         {"porosity.enabled=true", "erosion.model=\"halt\""},
+         "erosion halt"},
+        {"GrowthPorousErosionBalance",
+         {"porosity.enabled=true", "erosion.model=\"balance\""},
+         "erosion balance"},
+        {"GrowthFragmentationBouncing",
+         {"fragmentation.enabled=true", "bouncing.enabled=true"},
+         "fragmentation + bouncing"},
+        // With porosity off and bouncing on (above) every particle has phi = 1 and
+        // bounces, so the growth terms nearly vanish; the cases below have the porous
+        // state of grown_state (phi from 1 to 1e-4 across the grid), so fragmentation
+        // (v_frag of 10 m/s, crossed by the grown cells), its combination with erosion
+        // E2 and the bouncing switch at phi_bounce are each exercised.
+        {"GrowthPorousFragmentation",
+         {"porosity.enabled=true", "fragmentation.enabled=true",
+          "fragmentation.v_frag_ice_m_s=10.0", "fragmentation.v_frag_sil_m_s=10.0"},
+         "porous fragmentation"},
+        {"GrowthPorousErosionBalanceFragmentation",
+         {"porosity.enabled=true", "erosion.model=\"balance\"", "erosion.f_s=0.95",
+          "fragmentation.enabled=true", "fragmentation.v_frag_ice_m_s=10.0",
+          "fragmentation.v_frag_sil_m_s=10.0"},
+         "erosion balance + fragmentation"},
+        // halt stops growth but not the fragmentation loss: S (frag)_+ + (frag -
+        // (frag)_+)
+        {"GrowthPorousErosionHaltFragmentation",
+         {"porosity.enabled=true", "erosion.model=\"halt\"", "erosion.v_eros_m_s=20.0",
+          "fragmentation.enabled=true", "fragmentation.v_frag_ice_m_s=10.0",
+          "fragmentation.v_frag_sil_m_s=10.0"},
+         "erosion halt + fragmentation"},
+        {"GrowthPorousBouncing",
+         {"porosity.enabled=true", "bouncing.enabled=true"},
+         "porous bouncing"},
+        {"GrowthEpsteinDrag",
+         {"porosity.enabled=true", "growth.drag_law=\"epstein\""},
+         "Epstein drag"},
+        {"PlanetesimalsDirectCoagulation",
+         {"porosity.enabled=true", "planetesimals.coagulation=true"},
+         "planetesimals, direct coagulation"},
+        {"PlanetesimalsStreamingInstabilityD16",
+         {"porosity.enabled=true", "planetesimals.si=\"d16\"", "dust.dust_to_gas=0.5"},
+         "planetesimals, SI d16"},
+        {"PlanetesimalsStreamingInstabilityS18",
+         {"planetesimals.si=\"s18\"", "planetesimals.coagulation=true",
+          "dust.dust_to_gas=0.5"},
+         "planetesimals, SI s18 + coagulation"},
+        // Z = 0.006 sits inside the smooth threshold Z_crit(St) = 0.4-0.8% over the St
+        // range
+        {"PlanetesimalsStreamingInstabilityZcrit",
+         {"porosity.enabled=true", "planetesimals.si=\"zcrit\"",
+          "dust.dust_to_gas=0.006"},
+         "planetesimals, SI zcrit"},
+    },
+    [](const std::vector<std::string>& overrides, const char* label) {
+      expect_exact_growth(overrides, label);
+    });
 
-TEST(Jacobian, GrowthPorousErosionHalt) {
-  expect_exact_growth({"porosity.enabled=true", "erosion.model=\"halt\""},
-                      "erosion halt");
-}
-
-TEST(Jacobian, GrowthPorousErosionBalance) {
-  expect_exact_growth({"porosity.enabled=true", "erosion.model=\"balance\""},
-                      "erosion balance");
-}
-
-TEST(Jacobian, GrowthFragmentationBouncing) {
-  expect_exact_growth({"fragmentation.enabled=true", "bouncing.enabled=true"},
-                      "fragmentation + bouncing");
-}
-
-// With porosity off and bouncing on (above) every particle has phi = 1 and bounces, so
-// the growth terms nearly vanish; the cases below have the porous state of grown_state
-// (phi from 1 to 1e-4 across the grid), so fragmentation (v_frag of 10 m/s, crossed by
-// the grown cells), its combination with erosion E2 and the bouncing switch at phi_bounce
-// are each exercised.
-TEST(Jacobian, GrowthPorousFragmentation) {
-  expect_exact_growth(
-      {"porosity.enabled=true", "fragmentation.enabled=true",
-       "fragmentation.v_frag_ice_m_s=10.0", "fragmentation.v_frag_sil_m_s=10.0"},
-      "porous fragmentation");
-}
-
-TEST(Jacobian, GrowthPorousErosionBalanceFragmentation) {
-  expect_exact_growth(
-      {"porosity.enabled=true", "erosion.model=\"balance\"", "erosion.f_s=0.95",
-       "fragmentation.enabled=true", "fragmentation.v_frag_ice_m_s=10.0",
-       "fragmentation.v_frag_sil_m_s=10.0"},
-      "erosion balance + fragmentation");
-}
-
-TEST(Jacobian, GrowthPorousErosionHaltFragmentation) {
-  // halt stops growth but not the fragmentation loss: S (frag)_+ + (frag - (frag)_+)
-  expect_exact_growth(
-      {"porosity.enabled=true", "erosion.model=\"halt\"", "erosion.v_eros_m_s=20.0",
-       "fragmentation.enabled=true", "fragmentation.v_frag_ice_m_s=10.0",
-       "fragmentation.v_frag_sil_m_s=10.0"},
-      "erosion halt + fragmentation");
-}
-
-TEST(Jacobian, GrowthPorousBouncing) {
-  expect_exact_growth({"porosity.enabled=true", "bouncing.enabled=true"},
-                      "porous bouncing");
-}
-
-TEST(Jacobian, GrowthEpsteinDrag) {
-  expect_exact_growth({"porosity.enabled=true", "growth.drag_law=\"epstein\""},
-                      "Epstein drag");
-}
-
-TEST(Jacobian, PlanetesimalsDirectCoagulation) {
-  expect_exact_growth({"porosity.enabled=true", "planetesimals.coagulation=true"},
-                      "planetesimals, direct coagulation");
-}
-
-TEST(Jacobian, PlanetesimalsStreamingInstabilityD16) {
-  expect_exact_growth(
-      {"porosity.enabled=true", "planetesimals.si=\"d16\"", "dust.dust_to_gas=0.5"},
-      "planetesimals, SI d16");
-}
-
-TEST(Jacobian, PlanetesimalsStreamingInstabilityS18) {
-  expect_exact_growth({"planetesimals.si=\"s18\"", "planetesimals.coagulation=true",
-                       "dust.dust_to_gas=0.5"},
-                      "planetesimals, SI s18 + coagulation");
-}
-
-TEST(Jacobian, PlanetesimalsStreamingInstabilityZcrit) {
-  // Z = 0.006 sits inside the smooth threshold Z_crit(St) = 0.4-0.8% over the St range
-  expect_exact_growth(
-      {"porosity.enabled=true", "planetesimals.si=\"zcrit\"", "dust.dust_to_gas=0.006"},
-      "planetesimals, SI zcrit");
-}
+}  // namespace
 
 // Growth on evolving gas: the particle laws depend on Sigma_g through rho_g, the mean
 // free path and nu_mol (St, the relative speeds, the small projectiles' St, the SI
@@ -281,14 +288,8 @@ TEST(Jacobian, FiducialStateMidRun) {
   Simulation sim(load_scene(file, sets));
   const std::vector<double> y = evolved_state(sim, 1e3);
   const auto c = compare_with_fd(sim, y);
-  const auto& L = sim.model().layout();
-  print_errors("fiducial state at 1000 yr", 0, c.max_rel_err, c.max_entry_err);
-  EXPECT_LT(c.max_rel_err, 5e-7)  // measured 6.3e-8
-      << "worst d(" << L.describe(c.worst_row) << ")/d(" << L.describe(c.worst_col)
-      << "): analytic " << c.worst_analytic << ", FD " << c.worst_fd;
-  EXPECT_LT(c.max_entry_err, kEntryTolerance)
-      << "d(" << L.describe(c.entry_row) << ")/d(" << L.describe(c.entry_col) << ")";
-  EXPECT_EQ(c.outside_pattern, 0);
+  expect_matches_fd(c, sim.model().layout(), "fiducial state at 1000 yr", 0,
+                    5e-7);  // measured 6.3e-8
 }
 
 // DiskModel::set_active (operator-splitting studies, tests/bench/bench_split.cpp): the
