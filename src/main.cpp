@@ -47,6 +47,14 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
   return out;
 }
 
+//! The default of --progress for batch jobs: $PANOPTIC_PROGRESS, when set and not empty.
+void progress_from_environment(RunArgs& args) {
+  const char* env = std::getenv("PANOPTIC_PROGRESS");
+  if (env == nullptr || *env == '\0') return;
+  args.progress = env;
+  args.progress_source = "PANOPTIC_PROGRESS (environment) =";
+}
+
 }  // namespace
 
 namespace {
@@ -116,6 +124,10 @@ int run_command_line(int argc, char** argv) {
   run_cmd->add_option("--max-wall", args.max_wall,
                       "stop with a checkpoint (exit code 75) before this wall time, "
                       "e.g. 90m, 2h, 1h30m, 3600s");
+  run_cmd->add_option("--progress", args.progress,
+                      "when stdout is not a terminal (a batch job's log), print a line "
+                      "of progress (time, steps, wall time, ETA) every INTERVAL, e.g. "
+                      "60, 5m (default: $PANOPTIC_PROGRESS, else none)");
 
   auto* check_cmd = app.add_subcommand(
       "check", "validate a scene and print it resolved, with defaults");
@@ -197,6 +209,10 @@ int run_command_line(int argc, char** argv) {
   scan_cmd->add_option(
       "--run-exe", scan_opts.run_exe,
       "the panoptic executable that runs the scenes (default: this one)");
+  scan_cmd->add_option(
+      "--progress", scan_opts.progress,
+      "a line of progress every INTERVAL in each run's log (panoptic run "
+      "--progress; $PANOPTIC_PROGRESS reaches the runs as well)");
 
   try {
     app.parse(argc, argv);
@@ -232,6 +248,7 @@ int run_command_line(int argc, char** argv) {
       args.sets = overrides;
       overrides = with_preset(args.preset, overrides);
       args.max_wall_given = run_cmd->count("--max-wall") > 0;
+      if (run_cmd->count("--progress") == 0) progress_from_environment(args);
       return run_scene(args);
     }
     if (*check_cmd) return check_scene(scene, overrides);

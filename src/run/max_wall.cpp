@@ -8,9 +8,9 @@
 
 namespace panoptic {
 
-double parse_duration(std::string_view text) {
+double parse_duration(std::string_view text, std::string_view option) {
   const auto bad = [&] {
-    return ConfigError("--max-wall " + std::string(text) +
+    return ConfigError(std::string(option) + " " + std::string(text) +
                        ": not a duration; write e.g. 90m, 2h, 3600s or 1h30m (units d, "
                        "h, m, s, each once and from the largest down; a plain number is "
                        "seconds), greater than 0");

@@ -58,6 +58,8 @@ int run_scene(const RunArgs& a) {
   validate_scene(cfg);
   warn_unused_keys(cfg);
   const double max_wall = a.max_wall_given ? parse_duration(a.max_wall) : 0.0;
+  const double progress_s =
+      a.progress.empty() ? 0.0 : parse_duration(a.progress, a.progress_source);
   Simulation sim(cfg);
   const StateLayout& layout = sim.model().layout();
   // 2 open or restart the output: every difference between a new run and a restart is
@@ -130,7 +132,7 @@ int run_scene(const RunArgs& a) {
     if (max_wall > 0.0 && seconds_since(start) >= max_wall)
       throw Stop{"--max-wall " + a.max_wall};
   };
-  Progress progress(times.back());
+  Progress progress(times.front(), times.back(), progress_s);
   std::string status = "completed";
   int code = 0;
   try {

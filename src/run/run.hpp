@@ -21,6 +21,11 @@ struct RunArgs {
   //! --max-wall was given, so that `--max-wall ""` (an unset variable) is refused
   bool max_wall_given = false;
   std::string preset;  //!< --fast / --accurate: "fast", "accurate" or ""
+  //! --progress INTERVAL (a duration, as --max-wall), else PANOPTIC_PROGRESS; "" = none
+  std::string progress;
+  //! where `progress` came from, for its error message: "--progress" or
+  //! "PANOPTIC_PROGRESS="
+  std::string progress_source = "--progress";
 };
 
 //! Runs the scene; returns the exit code (0, or exit_codes::kStopped when stopped with a

@@ -35,6 +35,7 @@
 #include "src/core/wall_clock.hpp"
 #include "src/io/checkpoint.hpp"
 #include "src/io/durable_file.hpp"
+#include "src/run/max_wall.hpp"
 #include "src/scan/scan_exec.hpp"
 #include "src/scan/scan_manifest.hpp"
 #include "src/scan/scan_summary.hpp"
@@ -91,6 +92,7 @@ std::string first_difference(const std::string& a, const std::string& b) {
 //! that are not complete. Throws ConfigError before anything is written when the scan
 //! or any run's scene is bad.
 Prepared prepare(const ScanOptions& o) {
+  if (!o.progress.empty()) parse_duration(o.progress, "--progress");  // before any run
   Prepared p;
   p.m = load_scan(o.scan_file);
   p.resolved = validate_manifest(p.m);
@@ -143,7 +145,8 @@ Prepared prepare(const ScanOptions& o) {
     t.argv = {exe, "run", p.m.scene.string()};
     for (const std::string& s : p.m.overrides(i))
       t.argv.insert(t.argv.end(), {"--set", s});
-    t.argv.insert(t.argv.end(), {"-o", t.h5, "--overwrite"});
+    if (!o.progress.empty()) t.argv.insert(t.argv.end(), {"--progress", o.progress});
+    t.argv.insert(t.argv.end(), {"-o", t.h5, "--overwrite"});  // last: Pool::launch
     p.tasks.push_back(std::move(t));
   }
   return p;

@@ -18,8 +18,9 @@ struct ScanOptions {
   //! value, an unset $SLURM_ARRAY_TASK_ID, is refused, not taken as "every run")
   std::optional<std::string> task;
   bool dry_run = false;
-  bool force = false;   //!< replace a manifest that differs
-  std::string run_exe;  //!< the panoptic that runs the scenes (default: this one)
+  bool force = false;    //!< replace a manifest that differs
+  std::string run_exe;   //!< the panoptic that runs the scenes (default: this one)
+  std::string progress;  //!< --progress INTERVAL, passed to every run ("" = none)
 };
 
 //! Returns the exit code: 0 every run complete, 3 some runs failed (recorded in the

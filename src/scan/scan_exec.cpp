@@ -220,6 +220,22 @@ RunRecord finish_task(const ScanTask& task, int wait_status, double wall_s,
   return r;
 }
 
+namespace {
+
+// Two resolved scenes of the same values: the same text, or (a run written by another
+// version of panoptic, whose resolved scene is commented otherwise) the same values.
+bool same_scene(const std::string& stored, const std::string& expected) {
+  if (stored == expected) return true;
+  try {
+    return load_scene_text(stored, "config_toml").values_ ==
+           load_scene_text(expected, "manifest").values_;
+  } catch (const ConfigError&) {
+    return false;
+  }
+}
+
+}  // namespace
+
 bool can_continue(const ScanTask& task) {
   std::error_code ec;
   if (!fs::exists(task.h5, ec)) return false;
@@ -227,8 +243,8 @@ bool can_continue(const ScanTask& task) {
   try {
     // the checkpoint `panoptic run --restart` would continue (the previous one when the
     // last is missing, damaged or incomplete), read as it reads it
-    return load_restart_point(checkpoint_path(task.h5)).chk.config_toml ==
-           task.config_toml;
+    return same_scene(load_restart_point(checkpoint_path(task.h5)).chk.config_toml,
+                      task.config_toml);
   } catch (const Error&) {
     return false;  // neither can be used
   }
@@ -258,22 +274,6 @@ std::optional<RunRecord> read_record(const fs::path& status) {
   if (!have_outcome) return std::nullopt;
   return r;
 }
-
-namespace {
-
-// Two resolved scenes of the same values: the same text, or (a run written by another
-// version of panoptic, whose resolved scene is commented otherwise) the same values.
-bool same_scene(const std::string& stored, const std::string& expected) {
-  if (stored == expected) return true;
-  try {
-    return load_scene_text(stored, "config_toml").values_ ==
-           load_scene_text(expected, "manifest").values_;
-  } catch (const ConfigError&) {
-    return false;
-  }
-}
-
-}  // namespace
 
 RunInspection inspect_run(const fs::path& h5path, const std::string& config_toml,
                           double t_end_yr) {
