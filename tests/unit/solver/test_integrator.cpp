@@ -19,12 +19,32 @@ using namespace panoptic;
 
 namespace {
 
-class Decay : public PhysicsModule {
+//! A test module of one cell variable y, in `units`.
+class OneVariableModule : public PhysicsModule {
  public:
-  Decay(StateLayout& layout, double k) : k_(k) {
-    layout.add_cell_var({"y", "", "", 1.0, true});
+  OneVariableModule(StateLayout& layout, std::string_view name, const char* units)
+      : name_(name) {
+    layout.add_cell_var({"y", units, "", 1.0, true});
   }
-  std::string_view name() const override { return "decay"; }
+  std::string_view name() const override { return name_; }
+
+ private:
+  std::string_view name_;
+};
+
+//! The model of the one module M, built as M(layout, args...), on `n_cells` cells.
+template <class M, class... Args>
+std::unique_ptr<DiskModel> one_module_model(int n_cells, Args&&... args) {
+  auto layout = std::make_shared<StateLayout>(n_cells);
+  std::vector<std::unique_ptr<PhysicsModule>> mods;
+  mods.push_back(std::make_unique<M>(*layout, std::forward<Args>(args)...));
+  layout->freeze();
+  return std::make_unique<DiskModel>(layout, std::move(mods));
+}
+
+class Decay : public OneVariableModule {
+ public:
+  Decay(StateLayout& layout, double k) : OneVariableModule(layout, "decay", ""), k_(k) {}
   void declare_pattern(PatternBuilder& p) const override { p.add(0, 0); }
   void add_rhs(double, std::span<const double> y, std::span<double> ydot) const override {
     ydot[0] += -k_ * y[0];
@@ -38,13 +58,7 @@ class Decay : public PhysicsModule {
 };
 
 //! y' = -k y as a one-variable model, and the tolerances the decay tests use.
-std::unique_ptr<DiskModel> decay_model(double k) {
-  auto layout = std::make_shared<StateLayout>(1);
-  std::vector<std::unique_ptr<PhysicsModule>> mods;
-  mods.push_back(std::make_unique<Decay>(*layout, k));
-  layout->freeze();
-  return std::make_unique<DiskModel>(layout, std::move(mods));
-}
+std::unique_ptr<DiskModel> decay_model(double k) { return one_module_model<Decay>(1, k); }
 IntegratorOptions decay_options() {
   IntegratorOptions opt;
   opt.rtol = 1e-10;
@@ -52,6 +66,18 @@ IntegratorOptions decay_options() {
   return opt;
 }
 constexpr double kDecayY0[1] = {1.0};
+
+//! The message of the SolverError that advancing `cvode` to `t` throws; "" (and a test
+//! failure) when it throws none.
+std::string solver_error_of(CvodeIntegrator& cvode, double t) {
+  try {
+    cvode.advance_to(t);
+  } catch (const SolverError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected a SolverError";
+  return "";
+}
 }  // namespace
 
 TEST(Integrator, LinearDecayOverTwelveDecades) {
@@ -195,37 +221,27 @@ TEST(Integrator, StepsPerJacobianReachesCvode) {
 }
 
 TEST(Integrator, StepBudgetGivesSolverError) {
-  auto layout = std::make_shared<StateLayout>(1);
-  std::vector<std::unique_ptr<PhysicsModule>> mods;
-  mods.push_back(std::make_unique<Decay>(*layout, 1.0));
-  layout->freeze();
-  DiskModel model(layout, std::move(mods));
+  const auto model_of_decay = decay_model(1.0);
+  DiskModel& model = *model_of_decay;
   IntegratorOptions opt;
   opt.atol = {1e-14};
   opt.max_steps = 5;
   const double y0[1] = {1.0};
   CvodeIntegrator cvode(model, 0.0, y0, opt);
-  try {
-    cvode.advance_to(100.0);
-    FAIL() << "expected a SolverError";
-  } catch (const SolverError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("CV_TOO_MUCH_WORK"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("solver.max_steps"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("y in cell 0"), std::string::npos) << msg;
-  }
+  const std::string msg = solver_error_of(cvode, 100.0);
+  EXPECT_NE(msg.find("CV_TOO_MUCH_WORK"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("solver.max_steps"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("y in cell 0"), std::string::npos) << msg;
 }
 
 namespace {
 
 //! y' = -y until t = 1, a non-finite right-hand side after: CVODE shrinks its steps to
 //! fit in front of t = 1 and would never get past it.
-class NonFiniteAfterOne : public PhysicsModule {
+class NonFiniteAfterOne : public OneVariableModule {
  public:
-  explicit NonFiniteAfterOne(StateLayout& layout) {
-    layout.add_cell_var({"y", "g", "", 1.0, true});
-  }
-  std::string_view name() const override { return "non_finite_after_one"; }
+  explicit NonFiniteAfterOne(StateLayout& layout)
+      : OneVariableModule(layout, "non_finite_after_one", "g") {}
   void declare_pattern(PatternBuilder& p) const override { p.add(0, 0); }
   void add_rhs(double t, std::span<const double> y,
                std::span<double> ydot) const override {
@@ -239,11 +255,8 @@ class NonFiniteAfterOne : public PhysicsModule {
 }  // namespace
 
 TEST(Integrator, StalledStepsStopWithTheStateOfTheFailingCell) {
-  auto layout = std::make_shared<StateLayout>(1);
-  std::vector<std::unique_ptr<PhysicsModule>> mods;
-  mods.push_back(std::make_unique<NonFiniteAfterOne>(*layout));
-  layout->freeze();
-  DiskModel model(layout, std::move(mods));
+  const auto stalling = one_module_model<NonFiniteAfterOne>(1);
+  DiskModel& model = *stalling;
   model.set_describer([](long i, std::span<const double> y) {
     return "physical state y = " + std::to_string(y[i]);
   });
@@ -251,20 +264,14 @@ TEST(Integrator, StalledStepsStopWithTheStateOfTheFailingCell) {
   opt.atol = {1e-10};
   const double y0[1] = {1.0};
   CvodeIntegrator cvode(model, 0.0, y0, opt);
-  try {
-    cvode.advance_to(2.0);
-    FAIL() << "expected a SolverError";
-  } catch (const SolverError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("CV_WARNING (t + h = t)"), std::string::npos) << msg;
-    // the model's message and the error list name the cell, the variable and its state
-    EXPECT_NE(msg.find("non-finite right-hand side for y in cell 0 (physical state y = "),
-              std::string::npos)
-        << msg;
-    EXPECT_NE(msg.find("y in cell 0 (physical state y = 0.3678"), std::string::npos)
-        << msg;
-    EXPECT_NEAR(cvode.time(), 1.0, 1e-12);
-  }
+  const std::string msg = solver_error_of(cvode, 2.0);
+  EXPECT_NE(msg.find("CV_WARNING (t + h = t)"), std::string::npos) << msg;
+  // the model's message and the error list name the cell, the variable and its state
+  EXPECT_NE(msg.find("non-finite right-hand side for y in cell 0 (physical state y = "),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("y in cell 0 (physical state y = 0.3678"), std::string::npos) << msg;
+  EXPECT_NEAR(cvode.time(), 1.0, 1e-12);
   EXPECT_LT(cvode.stats().nst, 2000) << "stopped long before solver.max_steps";
 }
 
@@ -297,12 +304,10 @@ namespace {
 
 //! Two cells of y; its Jacobian writes d(y of cell 1)/d(y of cell 0), which its pattern
 //! does not declare (the mistake a new module makes).
-class UndeclaredCoupling : public PhysicsModule {
+class UndeclaredCoupling : public OneVariableModule {
  public:
-  explicit UndeclaredCoupling(StateLayout& layout) {
-    layout.add_cell_var({"y", "g", "", 1.0, true});
-  }
-  std::string_view name() const override { return "undeclared_coupling"; }
+  explicit UndeclaredCoupling(StateLayout& layout)
+      : OneVariableModule(layout, "undeclared_coupling", "g") {}
   void declare_pattern(PatternBuilder& p) const override {
     p.add(0, 0);
     p.add(1, 1);
@@ -321,11 +326,9 @@ class UndeclaredCoupling : public PhysicsModule {
 }  // namespace
 
 TEST(DiskModel, AnUndeclaredJacobianEntryNamesTheModuleAndTheVariables) {
-  auto layout = std::make_shared<StateLayout>(2);
-  std::vector<std::unique_ptr<PhysicsModule>> mods;
-  mods.push_back(std::make_unique<UndeclaredCoupling>(*layout));
-  layout->freeze();
-  DiskModel model(layout, std::move(mods));
+  const auto coupled = one_module_model<UndeclaredCoupling>(2);
+  const DiskModel& model = *coupled;
+  const StateLayout* layout = &model.layout();
   const double y[2] = {1.0, 0.5};
   std::vector<double> values(model.pattern().nnz());
   try {
