@@ -9,6 +9,10 @@
 namespace panoptic::h5 {
 namespace {
 
+// zlib's level 4 (h5py's default for gzip): level 9 shrinks the DustPy disk's
+// sigma(r, m) by under 1 % more
+constexpr unsigned kDeflateLevel = 4;
+
 hid_t ok(hid_t id, const std::string& what) {
   if (id < 0) throw IoError("HDF5: " + what + " failed");
   return id;
@@ -207,7 +211,8 @@ void write_vector(hid_t parent, const std::string& name, std::span<const double>
 }
 
 void create_stack(hid_t parent, const std::string& name, hsize_t width,
-                  const std::string& units, const std::string& description) {
+                  const std::string& units, const std::string& description,
+                  bool compressed) {
   const int rank = width > 0 ? 2 : 1;
   const hsize_t dims[2] = {0, width}, maxdims[2] = {H5S_UNLIMITED, width};
   const hsize_t chunk[2] = {1, width > 0 ? width : 1};
@@ -215,6 +220,12 @@ void create_stack(hid_t parent, const std::string& name, hsize_t width,
   Handle space(ok(H5Screate_simple(rank, dims, maxdims), "dataspace"), H5Sclose);
   Handle dcpl(ok(H5Pcreate(H5P_DATASET_CREATE), "property list"), H5Pclose);
   ok(H5Pset_chunk(dcpl.get(), rank, rank == 2 ? chunk : chunk1), "chunking", name);
+  if (compressed) {
+    // the byte shuffle groups the exponent bytes of neighbouring doubles, which deflate
+    // then packs (HDF5 User's Guide, "Data Filters")
+    ok(H5Pset_shuffle(dcpl.get()), "shuffle filter of", name);
+    ok(H5Pset_deflate(dcpl.get(), kDeflateLevel), "deflate filter of", name);
+  }
   Handle ds(ok(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
                           dcpl.get(), H5P_DEFAULT),
                "creating dataset " + name),

@@ -79,8 +79,11 @@ bool exists(hid_t parent, const std::string& path);
 void write_vector(hid_t parent, const std::string& name, std::span<const double> data,
                   const std::string& units, const std::string& description);
 //! Extendible dataset of shape (0, width) (width 0: shape (0,)), chunked along time.
+//! `compressed`: each chunk (row) is shuffled and deflated (the HDF5 filters h5py
+//! and every HDF5 reader decode), for rows of many values such as a distribution.
 void create_stack(hid_t parent, const std::string& name, hsize_t width,
-                  const std::string& units, const std::string& description);
+                  const std::string& units, const std::string& description,
+                  bool compressed = false);
 //! Appends one row to a stack created by create_stack.
 void append_row(hid_t parent, const std::string& name, std::span<const double> row);
 //! Number of rows of a stack.

@@ -316,11 +316,12 @@ void RunOutput::append_series(const std::string& group, const std::string& name,
 }
 
 void RunOutput::add_field(const std::string& name, std::size_t width,
-                          const std::string& units, const std::string& description) {
+                          const std::string& units, const std::string& description,
+                          bool compressed) {
   leave_swmr();
   h5::Handle g = h5::open_group(file_.get(), "snapshots");
   if (n_snapshots_ > 0 && fields_.contains(name)) return;  // continued: in the file
-  h5::create_stack(g.get(), name, width, units, description);
+  h5::create_stack(g.get(), name, width, units, description, compressed);
   fields_[name] = width;
   if (n_snapshots_ == 0) return;
   // A continued output without this field: the restart's copy could not read it (its

@@ -108,9 +108,10 @@ class RunOutput {
   //! Declares /snapshots/<name>, `width` values per snapshot (0: a scalar per snapshot).
   //! For a continued output (restart), a field already in the file is kept; one the
   //! file lost (unreadable, left out of the restart's copy) is recreated with NaN rows
-  //! up to the checkpoint's snapshot, and named in lost_rows().
+  //! up to the checkpoint's snapshot, and named in lost_rows(). `compressed`: its rows
+  //! are deflated (h5::create_stack).
   void add_field(const std::string& name, std::size_t width, const std::string& units,
-                 const std::string& description);
+                 const std::string& description, bool compressed = false);
   //! Appends one snapshot: /snapshots/time and every declared field, then flushes.
   void write_snapshot(double t_yr,
                       const std::map<std::string, std::vector<double>>& fields);

@@ -19,6 +19,10 @@ std::vector<OutputField> Simulation::make_output_fields() const {
   // the modules' own, in the order they were built (module_registry.cpp)
   for (const PhysicsModule* m : modules_in_build_order_)
     for (OutputField& f : m->output_fields()) fields.push_back(std::move(f));
+  // A field wider than one value per face holds several values per cell (sigma(r, m) of
+  // the distribution, 10^4 values a row): deflated. The single-size model's fields are
+  // at most one value per face and stay as they were.
+  for (OutputField& f : fields) f.compressed = f.width > cells + 1;
   // then the model's: the gas column, the Stokes model, the budget and the monitors
   fields.push_back({"sigma_g", cells, "g cm^-2", "gas surface density",
                     [this, n](std::span<const double> y) {
@@ -112,7 +116,7 @@ void Simulation::prepare_output(RunOutput& out) const {
   for (const StaticField& f : static_fields())
     out.write_static(f.group, f.name, f.values, f.units, f.description);
   for (const OutputField& f : output_fields_)
-    out.add_field(f.name, f.width, f.units, f.description);
+    out.add_field(f.name, f.width, f.units, f.description, f.compressed);
   for (const OutputAttribute& a : output_attributes()) out.write_attribute(a);
 }
 

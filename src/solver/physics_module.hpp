@@ -48,6 +48,9 @@ struct OutputField {
   std::string description;  //!< description attribute
   //! The values at state y, in `units`.
   std::function<std::vector<double>(std::span<const double>)> fill;
+  //! Written deflated (src/io/h5.hpp, create_stack): set by the model for the fields
+  //! wider than the grid (Simulation::make_output_fields).
+  bool compressed = false;
 };
 
 class PhysicsModule {

@@ -271,3 +271,52 @@ TEST(H5RoundTrip, RowDigestsCountedAtASnapshotAreThoseCopiedThen) {
   too_many["snapshots/sigma_d"] = 9;
   EXPECT_THROW(first_rows(out.row_digests(), too_many), std::logic_error);
 }
+
+// A field declared compressed (the distribution's sigma(r, m)) is written with the
+// shuffle and deflate filters, takes less room than its values, reads back bit for bit,
+// and keeps its filters in the copy a restart continues (h5::copy_file); an ordinary
+// field stays unfiltered, so that the single-size outputs keep their layout.
+TEST(H5RoundTrip, CompressedFieldIsDeflatedReadsBackExactlyAndCopiesFiltered) {
+  const fs::path path = temp_file("deflated.h5"), copy = temp_file("deflated_copy.h5");
+  constexpr std::size_t width = 2000;
+  std::vector<double> row(width);
+  // a smooth profile up to an empty upper half (the bins growth has not reached), -0.0
+  for (std::size_t k = 0; k < width / 2; ++k)
+    row[k] = 1e-3 * std::exp(-1e-3 * static_cast<double>(k));
+  row[1] = -0.0;
+  {
+    RunOutput out(path, false, {"scene_z", "[grid]\nn_cells = 3\n", "sha", "1.0"});
+    out.start_appending();
+    out.add_field("sigma", width, "g cm^-2", "per bin", true);
+    out.add_field("sigma_d", 3, "g cm^-2", "dust");
+    out.write_snapshot(0.0, {{"sigma", row}, {"sigma_d", {1.0, 2.0, 3.0}}});
+    out.write_snapshot(1.0, {{"sigma", row}, {"sigma_d", {1.0, 2.0, 3.0}}});
+  }
+  h5::copy_file(path.string(), copy.string());
+  for (const fs::path& p : {path, copy}) {
+    h5::Handle f = h5::open_file(p.string(), false);
+    h5::Handle g = h5::open_group(f.get(), "snapshots");
+    const auto back = h5::read_doubles(g.get(), "sigma");
+    ASSERT_EQ(back.size(), 2 * width) << p;
+    EXPECT_EQ(std::memcmp(back.data(), row.data(), width * sizeof(double)), 0) << p;
+    EXPECT_EQ(std::memcmp(back.data() + width, row.data(), width * sizeof(double)), 0);
+    auto filters = [&](const char* name) {
+      h5::Handle ds(H5Dopen2(g.get(), name, H5P_DEFAULT), H5Dclose);
+      h5::Handle dcpl(H5Dget_create_plist(ds.get()), H5Pclose);
+      std::vector<H5Z_filter_t> ids;
+      for (int i = 0; i < H5Pget_nfilters(dcpl.get()); ++i) {
+        unsigned flags = 0;
+        std::size_t n = 0;
+        ids.push_back(H5Pget_filter2(dcpl.get(), static_cast<unsigned>(i), &flags, &n,
+                                     nullptr, 0, nullptr, nullptr));
+      }
+      return std::pair{ids, H5Dget_storage_size(ds.get())};
+    };
+    const auto [sigma_filters, sigma_bytes] = filters("sigma");
+    EXPECT_EQ(sigma_filters,
+              (std::vector<H5Z_filter_t>{H5Z_FILTER_SHUFFLE, H5Z_FILTER_DEFLATE}))
+        << p;
+    EXPECT_LT(sigma_bytes, 2 * width * sizeof(double) * 3 / 4) << p;
+    EXPECT_TRUE(filters("sigma_d").first.empty()) << p;
+  }
+}
