@@ -3,8 +3,9 @@
 //! bins' radii, Stokes numbers and scale heights from their filling factors (spec §2),
 //! the pair speeds (spec §3), the kernel, the fragmentation probabilities, the porosity
 //! of sticking products and the compaction floors (spec §4.3-§4.4 per bin), from the
-//! local gas and the monomer species. Off the run path: used by the tests and
-//! tests/bench/bench_coagulation.cpp until the distribution mode of issue 35 lands.
+//! local gas and the monomer species. Used by the distribution mode on the grid
+//! (physics/modules/size_distribution.cpp), the tests and
+//! tests/bench/bench_coagulation.cpp.
 #include <cmath>
 #include <span>
 #include <vector>

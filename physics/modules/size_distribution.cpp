@@ -26,6 +26,7 @@ SizeDistribution::SizeDistribution(StateLayout& layout, const Grid& grid,
       opt_(options),
       engine_(coag::MassGrid(options.m_min > 0.0 ? options.m_min : species[0].m0,
                              options.m_max, options.bins_per_decade)),
+      porous_(options.growth.porosity),
       n_bins_(engine_.size()),
       mass_unit_(dust_mass) {
   layout.allow_wide_cells();
@@ -38,13 +39,34 @@ SizeDistribution::SizeDistribution(StateLayout& layout, const Grid& grid,
          sigma_scale, false});
     if (k == 0) slot0_ = slot;
   }
+  for (int k = 0; porous_ && k < n_bins_; ++k)  // psi_k >= sigma_k: the same scale
+    layout.add_cell_var({"psi_" + std::to_string(k), "g cm^-2",
+                         "volume measure of mass bin " + std::to_string(k) +
+                             ", sigma_k <1/phi>_m (spec §15.1)",
+                         sigma_scale, false});
   const double r_out = grid.r_f(grid.n_cells());
   g_out_ = layout.add_global_var(booked_mass_info(
       "m_out_dust", "dust mass that left through r_in", sigma_scale, r_out, dust_mass));
   const int n = grid.n_cells();
   coef_.resize(n);
   st_.resize(static_cast<std::size_t>(n) * n_bins_);
-  for (int i = 0; i < n; ++i) build_cell(i, cell_gas.reference(i));
+  dst_dlnu_.assign(st_.size(), 0.0);
+  for (int i = 0; i < n; ++i) {
+    gas_now_.push_back(cell_gas.reference(i));
+    build_cell(i, gas_now_[i]);
+  }
+}
+
+coag::CellModel SizeDistribution::cell_model(int cell) const {
+  // DustPy's outcome model: pairs fragment above v_frag and, beyond its mass ratio,
+  // crater at the same speed (spec §15.2)
+  const physics::Species& sp = species_[cell];
+  coag::CellModel model{sp, opt_.growth, {}};
+  model.outcomes.fragmentation = opt_.growth.fragmentation && sp.fragments;
+  model.outcomes.cratering = model.outcomes.fragmentation;
+  model.outcomes.v_frag = sp.v_frag;
+  model.outcomes.v_eros = sp.v_frag;
+  return model;
 }
 
 void SizeDistribution::build_cell(int cell, const physics::LocalGas& gas) const {
@@ -55,22 +77,67 @@ void SizeDistribution::build_cell(int cell, const physics::LocalGas& gas) const 
       coag::bin_properties(engine_.grid(), phi, sp.rho0, gas, opt_.growth.drag);
   std::copy(bins.St.begin(), bins.St.end(),
             st_.begin() + static_cast<std::ptrdiff_t>(cell) * nb);
-  if (!opt_.coagulation) return;
-  // DustPy's outcome model: pairs fragment above v_frag and, beyond its mass ratio,
-  // crater at the same speed (spec §15.2)
-  coag::CellModel model{sp, opt_.growth, {}};
-  model.outcomes.fragmentation = opt_.growth.fragmentation && sp.fragments;
-  model.outcomes.cratering = model.outcomes.fragmentation;
-  model.outcomes.v_frag = sp.v_frag;
-  model.outcomes.v_eros = sp.v_frag;
+  if (!opt_.coagulation || porous_) return;  // porous: update_porous()
   const std::vector<double> sigma(nb, 0.0);
-  coef_[cell] = coag::cell_coefficients(engine_, sigma, {}, gas, model);
+  coef_[cell] = coag::cell_coefficients(engine_, sigma, {}, gas, cell_model(cell));
 }
 
 void SizeDistribution::refresh(std::span<const double> y) const {
   if (!gas_.evolves()) return;
-  for (int i = 0; i < grid_.n_cells(); ++i)
-    build_cell(i, cell_gas_.at(i, &y[layout_.index(i, 0)]));
+  for (int i = 0; i < grid_.n_cells(); ++i) {
+    gas_now_[i] = cell_gas_.at(i, &y[layout_.index(i, 0)]);
+    build_cell(i, gas_now_[i]);
+  }
+}
+
+double SizeDistribution::phi(int cell, int k, std::span<const double> y) const {
+  if (!porous_) return 1.0;
+  // as the engine (cell_coefficients): a bin without mass or volume is compact
+  const double s = y[layout_.index(cell, bin_slot(k))],
+               p = y[layout_.index(cell, psi_slot(k))];
+  return s > 0.0 && p > 0.0 ? s / p : 1.0;
+}
+
+void SizeDistribution::update_porous(std::span<const double> y, bool coefficients,
+                                     bool derivatives) const {
+  const int nb = n_bins_;
+  const auto& m = engine_.grid().m;
+  std::vector<double> phi_k(nb);
+  for (int i = 0; i < grid_.n_cells(); ++i) {
+    const physics::LocalGas& gas = gas_now_[i];
+    const double rho0 = species_[i].rho0;
+    for (int k = 0; k < nb; ++k) phi_k[k] = phi(i, k, y);
+    const coag::BinProperties bins =
+        coag::bin_properties(engine_.grid(), phi_k, rho0, gas, opt_.growth.drag);
+    const std::size_t off = static_cast<std::size_t>(i) * nb;
+    std::copy(bins.St.begin(), bins.St.end(),
+              st_.begin() + static_cast<std::ptrdiff_t>(off));
+    for (int k = 0; derivatives && k < nb; ++k) {
+      // d St / d ln u by the forward difference of cell_coefficients (1e-6 in ln u); 0
+      // where phi does not follow the state (an empty bin)
+      const double s = y[layout_.index(i, bin_slot(k))],
+                   p = y[layout_.index(i, psi_slot(k))];
+      if (!(s > 0.0 && p > 0.0)) {
+        dst_dlnu_[off + k] = 0.0;
+        continue;
+      }
+      const double step = 1e-6, phi_step = phi_k[k] * std::exp(-step);
+      const double st = physics::stokes_number_of_radius(
+          physics::radius(m[k], phi_step, rho0), phi_step, rho0, gas, opt_.growth.drag);
+      dst_dlnu_[off + k] = (st - bins.St[k]) / step;
+    }
+    if (!coefficients || !opt_.coagulation) continue;
+    const long base = layout_.index(i, slot0_);
+    coef_[i] =
+        coag::cell_coefficients(engine_, y.subspan(base, nb), y.subspan(base + nb, nb),
+                                gas, cell_model(i), derivatives);
+  }
+}
+
+coag::CellCoefficients SizeDistribution::coefficients(int cell,
+                                                      std::span<const double> y) const {
+  if (porous_) update_porous(y, true, false);
+  return coef_[cell];
 }
 
 std::vector<double> SizeDistribution::bin_radii() const {
@@ -84,6 +151,7 @@ void SizeDistribution::initial_cell(double sigma_d, std::span<double> bins) cons
   std::fill(bins.begin(), bins.end(), 0.0);
   if (!opt_.mrn) {
     bins[0] = sigma_d;
+    if (bins.size() > static_cast<std::size_t>(n_bins_)) bins[n_bins_] = sigma_d;
     return;
   }
   // n(a) ∝ a^-3.5: the mass per logarithmic bin ∝ a^4 n(a) ∝ a^(1/2) (DustPy's MRN
@@ -94,7 +162,9 @@ void SizeDistribution::initial_cell(double sigma_d, std::span<double> bins) cons
     bins[k] = std::sqrt(a[k]);
     total += bins[k];
   }
-  for (double& s : bins) s *= sigma_d / total;
+  for (int k = 0; k < n_bins_; ++k) bins[k] *= sigma_d / total;
+  // porous: compact at the start, psi_k = sigma_k (phi = 1)
+  for (std::size_t k = n_bins_; k < bins.size(); ++k) bins[k] = bins[k - n_bins_];
 }
 
 double SizeDistribution::sigma_d(int cell, std::span<const double> y) const {
@@ -110,6 +180,7 @@ int SizeDistribution::dominant_bin(int cell, std::span<const double> y) const {
 }
 
 std::vector<double> SizeDistribution::dominant_st(std::span<const double> y) const {
+  if (porous_) update_porous(y, false, false);
   std::vector<double> st(grid_.n_cells());
   for (int i = 0; i < grid_.n_cells(); ++i)
     st[i] = st_[static_cast<std::size_t>(i) * n_bins_ + dominant_bin(i, y)];
@@ -152,28 +223,45 @@ void SizeDistribution::declare_pattern(PatternBuilder& p) const {
   for (int f = 0; f < n; ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
     for (int k = 0; k < nb; ++k) {
-      std::vector<long> cols{layout_.index(a, bin_slot(k)),
-                             layout_.index(b, bin_slot(k))};
+      // porous: both flows of the bin depend on sigma_k and psi_k of the two cells
+      // through St
+      std::vector<int> slots{bin_slot(k)};
+      if (porous_) slots.push_back(psi_slot(k));
+      std::vector<long> cols;
+      for (int slot : slots) {
+        for (int c : {a, b}) cols.push_back(layout_.index(c, slot));
+        // limited scheme: the far upwind cell on either side (the drift may turn)
+        if (flux_.options().limited && flux_.options().drift && f > 0)
+          for (int far : {f - 2, f + 1})
+            if (far >= 0 && far < n) cols.push_back(layout_.index(far, slot));
+      }
       if (gas_.evolves())
         for (int c : {a, b}) cols.push_back(layout_.index(c, gas_.slot));
-      // limited scheme: the far upwind cell on either side (the drift may turn)
-      if (flux_.options().limited && flux_.options().drift && f > 0)
-        for (int far : {f - 2, f + 1})
-          if (far >= 0 && far < n) cols.push_back(layout_.index(far, bin_slot(k)));
-      face_rows(f, k, rows);
-      for (long row : rows)
-        for (long col : cols) p.add(row, col);
+      for (int q = 0; q < static_cast<int>(slots.size()); ++q) {
+        flow_rows(f, k, q == 1, rows);
+        for (long row : rows)
+          for (long col : cols) p.add(row, col);
+      }
     }
   }
   if (!opt_.coagulation) return;
+  const int nv = cell_vars();
   for (int i = 0; i < n; ++i)  // the dense coagulation block of every cell
-    for (int r = 0; r < nb; ++r)
-      for (int c = 0; c < nb; ++c)
-        p.add(layout_.index(i, bin_slot(r)), layout_.index(i, bin_slot(c)));
+    for (int r = 0; r < nv; ++r)
+      for (int c = 0; c < nv; ++c)
+        p.add(layout_.index(i, slot0_ + r), layout_.index(i, slot0_ + c));
 }
 
-void SizeDistribution::add_rhs(double, std::span<const double> y,
-                               std::span<double> ydot) const {
+void SizeDistribution::flow_rows(int f, int k, bool psi, std::vector<long>& rows) const {
+  if (!psi) return face_rows(f, k, rows);
+  rows.clear();  // the volume measure is not booked: the two cells only
+  rows.push_back(layout_.index(f, psi_slot(k)));
+  if (f > 0) rows.push_back(layout_.index(f - 1, psi_slot(k)));
+}
+
+void SizeDistribution::add_transport(std::span<const double> y,
+                                     std::span<double> ydot) const {
+  if (porous_) update_porous(y, opt_.coagulation, false);
   const int n = grid_.n_cells(), nb = n_bins_;
   std::vector<long> rows;
   for (int f = 0; f < n; ++f) {
@@ -184,34 +272,48 @@ void SizeDistribution::add_rhs(double, std::span<const double> y,
       const std::size_t kb = static_cast<std::size_t>(b) * nb + k;
       const auto face =
           flux_.face_terms(f, DustFaceFlux::face_stokes(f, st_[ka], st_[kb]), sg_a, sg_b);
-      const double q_far = face.far >= 0 ? y[layout_.index(face.far, bin_slot(k))] : 0.0;
-      const double flow =
-          flux_.flow(f, face, sg_a, sg_b, y[layout_.index(a, bin_slot(k))],
-                     y[layout_.index(b, bin_slot(k))], q_far, nullptr);
-      ydot[layout_.index(f, bin_slot(k))] += flow / grid_.area(f);
-      if (f > 0) ydot[layout_.index(f - 1, bin_slot(k))] -= flow / grid_.area(f - 1);
-      face_rows(f, k, rows);
-      for (std::size_t r = f > 0 ? 2 : 1; r < rows.size(); ++r)
-        ydot[rows[r]] -= flow / mass_unit_;  // the booked masses (outflow < 0 books +)
+      // sigma_k, then (porous) psi_k with the same face terms: its tracer moment
+      for (int q = 0; q < (porous_ ? 2 : 1); ++q) {
+        const int slot = q == 0 ? bin_slot(k) : psi_slot(k);
+        const double q_far = face.far >= 0 ? y[layout_.index(face.far, slot)] : 0.0;
+        const double flow = flux_.flow(f, face, sg_a, sg_b, y[layout_.index(a, slot)],
+                                       y[layout_.index(b, slot)], q_far, nullptr);
+        ydot[layout_.index(f, slot)] += flow / grid_.area(f);
+        if (f > 0) ydot[layout_.index(f - 1, slot)] -= flow / grid_.area(f - 1);
+        if (q == 1) continue;
+        face_rows(f, k, rows);
+        for (std::size_t r = f > 0 ? 2 : 1; r < rows.size(); ++r)
+          ydot[rows[r]] -= flow / mass_unit_;  // the booked masses (outflow < 0 books +)
+      }
     }
   }
+}
+
+void SizeDistribution::add_rhs(double, std::span<const double> y,
+                               std::span<double> ydot) const {
+  add_transport(y, ydot);  // porous: rebuilds the coefficients from y
   if (!opt_.coagulation) return;
-  scratch_.resize(nb);
+  const int n = grid_.n_cells(), nb = n_bins_, nv = cell_vars();
+  scratch_.resize(nv);
+  const std::span<double> out(scratch_);
   for (int i = 0; i < n; ++i) {
     const long base = layout_.index(i, slot0_);
-    engine_.rhs(coef_[i], y.subspan(base, nb), {}, scratch_, {});
-    for (int k = 0; k < nb; ++k) ydot[base + k] += scratch_[k];
+    engine_.rhs(coef_[i], y.subspan(base, nb),
+                porous_ ? y.subspan(base + nb, nb) : std::span<const double>{},
+                out.first(nb), porous_ ? out.subspan(nb) : std::span<double>{});
+    for (int k = 0; k < nv; ++k) ydot[base + k] += scratch_[k];
   }
 }
 
 void SizeDistribution::add_jacobian(double, std::span<const double> y,
                                     JacobianValues& jac) const {
+  if (porous_) update_porous(y, opt_.coagulation, true);
   const int n = grid_.n_cells(), nb = n_bins_;
   std::vector<long> rows;
   for (int f = 0; f < n; ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
     const auto [sg_a, sg_b] = face_gas(f, y);
-    // local directions: sigma_k of cells a and b, then (evolving gas) their Sigma_g
+    // local directions: the quantity of cells a and b, then (evolving gas) their Sigma_g
     const bool ev = gas_.evolves();
     const ADCell ga = ev ? ad_seed<ADCell>(sg_a, 2) : ADCell(sg_a);
     const ADCell gb = ev ? ad_seed<ADCell>(sg_b, 3) : ADCell(sg_b);
@@ -220,37 +322,70 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
       const std::size_t kb = static_cast<std::size_t>(b) * nb + k;
       const ADCell st(DustFaceFlux::face_stokes(f, st_[ka], st_[kb]));
       const auto face = flux_.face_terms(f, st, ga, gb);
-      const long col_a = layout_.index(a, bin_slot(k)),
-                 col_b = layout_.index(b, bin_slot(k));
-      const double q_far = face.far >= 0 ? y[layout_.index(face.far, bin_slot(k))] : 0.0;
-      double d_far = 0.0;
-      const ADCell flow = flux_.flow(f, face, ga, gb, ad_seed<ADCell>(y[col_a], 0),
-                                     ad_seed<ADCell>(y[col_b], 1), q_far, &d_far);
-      const long cols[4] = {col_a, col_b, ev ? layout_.index(a, gas_.slot) : -1,
-                            ev ? layout_.index(b, gas_.slot) : -1};
-      face_rows(f, k, rows);
-      for (std::size_t r = 0; r < rows.size(); ++r) {
-        // the cell right of the face gains the flow, the one left of it and the booked
-        // masses lose it
-        const double scale = r == 0            ? 1.0 / grid_.area(f)
-                             : f > 0 && r == 1 ? -1.0 / grid_.area(f - 1)
-                                               : -1.0 / mass_unit_;
-        for (int j = 0; j < (ev ? 4 : 2); ++j)
-          if (flow.derivatives()[j] != 0.0)
-            jac.add(rows[r], cols[j], scale * flow.derivatives()[j]);
-        if (d_far != 0.0)
-          jac.add(rows[r], layout_.index(face.far, bin_slot(k)), scale * d_far);
+      // porous: the face terms by the two cells' St (directions 0 and 1), chained below
+      // to sigma_k and psi_k through u = psi/sigma
+      DustFaceFlux::FaceTerms<ADCell> face_st{ADCell(0.0), ADCell(0.0), -1};
+      if (porous_)
+        face_st =
+            flux_.face_terms(f,
+                             DustFaceFlux::face_stokes(f, ad_seed<ADCell>(st_[ka], 0),
+                                                       ad_seed<ADCell>(st_[kb], 1)),
+                             ADCell(sg_a), ADCell(sg_b));
+      for (int q = 0; q < (porous_ ? 2 : 1); ++q) {
+        const int slot = q == 0 ? bin_slot(k) : psi_slot(k);
+        const long col_a = layout_.index(a, slot), col_b = layout_.index(b, slot);
+        const double q_far = face.far >= 0 ? y[layout_.index(face.far, slot)] : 0.0;
+        double d_far = 0.0;
+        const ADCell flow = flux_.flow(f, face, ga, gb, ad_seed<ADCell>(y[col_a], 0),
+                                       ad_seed<ADCell>(y[col_b], 1), q_far, &d_far);
+        const long cols[4] = {col_a, col_b, ev ? layout_.index(a, gas_.slot) : -1,
+                              ev ? layout_.index(b, gas_.slot) : -1};
+        double d_st[2] = {0.0, 0.0};
+        if (porous_) {
+          const ADCell flow_st =
+              flux_.flow(f, face_st, ADCell(sg_a), ADCell(sg_b), ADCell(y[col_a]),
+                         ADCell(y[col_b]), q_far, nullptr);
+          d_st[0] = flow_st.derivatives()[0];
+          d_st[1] = flow_st.derivatives()[1];
+        }
+        flow_rows(f, k, q == 1, rows);
+        for (std::size_t r = 0; r < rows.size(); ++r) {
+          // the cell right of the face gains the flow, the one left of it and the
+          // booked masses lose it
+          const double scale = r == 0            ? 1.0 / grid_.area(f)
+                               : f > 0 && r == 1 ? -1.0 / grid_.area(f - 1)
+                                                 : -1.0 / mass_unit_;
+          for (int j = 0; j < (ev ? 4 : 2); ++j)
+            if (flow.derivatives()[j] != 0.0)
+              jac.add(rows[r], cols[j], scale * flow.derivatives()[j]);
+          if (d_far != 0.0)
+            jac.add(rows[r], layout_.index(face.far, slot), scale * d_far);
+          for (int side = 0; side < 2; ++side) {
+            // St of the cell by ln u = ln psi - ln sigma
+            const int c = side == 0 ? a : b;
+            const double g = dst_dlnu_[static_cast<std::size_t>(c) * nb + k];
+            if (d_st[side] == 0.0 || g == 0.0) continue;
+            const double sig = y[layout_.index(c, bin_slot(k))];
+            const double psi = y[layout_.index(c, psi_slot(k))];
+            jac.add(rows[r], layout_.index(c, bin_slot(k)),
+                    -scale * d_st[side] * g / sig);
+            jac.add(rows[r], layout_.index(c, psi_slot(k)), scale * d_st[side] * g / psi);
+          }
+        }
       }
     }
   }
   if (!opt_.coagulation) return;
-  scratch_.resize(static_cast<std::size_t>(nb) * nb);
+  const int nv = cell_vars();
+  scratch_.resize(static_cast<std::size_t>(nv) * nv);
   for (int i = 0; i < n; ++i) {
     const long base = layout_.index(i, slot0_);
-    engine_.jacobian(coef_[i], y.subspan(base, nb), {}, scratch_);
-    for (int r = 0; r < nb; ++r)
-      for (int c = 0; c < nb; ++c) {
-        const double v = scratch_[static_cast<std::size_t>(r) * nb + c];
+    engine_.jacobian(coef_[i], y.subspan(base, nb),
+                     porous_ ? y.subspan(base + nb, nb) : std::span<const double>{},
+                     scratch_);
+    for (int r = 0; r < nv; ++r)
+      for (int c = 0; c < nv; ++c) {
+        const double v = scratch_[static_cast<std::size_t>(r) * nv + c];
         if (v != 0.0) jac.add(base + r, base + c, v);
       }
   }
@@ -293,17 +428,23 @@ std::vector<OutputField> SizeDistribution::output_fields() const {
       return out;
     };
   };
-  return {
+  // a field (r, m): cell by cell, the bins of /grid/m_bins in each
+  auto per_bin = [n, nb](auto value) {
+    return [n, nb, value](std::span<const double> y) {
+      std::vector<double> out(static_cast<std::size_t>(n) * nb);
+      for (int i = 0; i < n; ++i)
+        for (int k = 0; k < nb; ++k)
+          out[static_cast<std::size_t>(i) * nb + k] = value(i, k, y);
+      return out;
+    };
+  };
+  std::vector<OutputField> fields{
       {"sigma", cells * nb, "g cm^-2",
        "dust surface density per mass bin, sigma(r, m): cell by cell, the bins of "
        "/grid/m_bins in each (spec §15.1)",
-       [this, n, nb](std::span<const double> y) {
-         std::vector<double> out(static_cast<std::size_t>(n) * nb);
-         for (int i = 0; i < n; ++i)
-           for (int k = 0; k < nb; ++k)
-             out[static_cast<std::size_t>(i) * nb + k] = y[layout_.index(i, bin_slot(k))];
-         return out;
-       }},
+       per_bin([this](int i, int k, std::span<const double> y) {
+         return y[layout_.index(i, bin_slot(k))];
+       })},
       {"sigma_d", cells, "g cm^-2", "dust surface density (sum of the bins)",
        per_cell([this](int i, std::span<const double> y) { return sigma_d(i, y); })},
       {"m", cells, "g", "mass of the mass-dominating bin (argmax sigma_k, spec §15.4)",
@@ -312,13 +453,33 @@ std::vector<OutputField> SizeDistribution::output_fields() const {
        })},
       {"a", cells, "cm", "radius of the mass-dominating bin (DustPy's a_rep)",
        per_cell([this](int i, std::span<const double> y) {
-         return physics::radius(engine_.grid().m[dominant_bin(i, y)], 1.0,
-                                species_[i].rho0);
+         const int k = dominant_bin(i, y);
+         return physics::radius(engine_.grid().m[k], phi(i, k, y), species_[i].rho0);
        })},
       {"mdot_d", cells + 1, "g s^-1",
        "dust mass flow through the faces, positive outward",
        [this](std::span<const double> y) { return mass_flow(y); }},
   };
+  if (!porous_) return fields;
+  // porous: phi(r, m) and the mass-dominating bin's phi and internal density, named as
+  // the single-size model's fields (spec §15.4)
+  fields.push_back({"phi_bins", cells * nb, "",
+                    "filling factor per mass bin, phi(r, m) = sigma_k/psi_k: cell by "
+                    "cell, the bins of /grid/m_bins in each (1 in an empty bin; spec "
+                    "§15.1)",
+                    per_bin([this](int i, int k, std::span<const double> y) {
+                      return phi(i, k, y);
+                    })});
+  fields.push_back({"phi", cells, "", "filling factor of the mass-dominating bin",
+                    per_cell([this](int i, std::span<const double> y) {
+                      return phi(i, dominant_bin(i, y), y);
+                    })});
+  fields.push_back({"rho_int", cells, "g cm^-3",
+                    "internal density of the mass-dominating bin, phi rho0",
+                    per_cell([this](int i, std::span<const double> y) {
+                      return phi(i, dominant_bin(i, y), y) * species_[i].rho0;
+                    })});
+  return fields;
 }
 
 }  // namespace panoptic

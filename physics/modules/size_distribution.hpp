@@ -16,8 +16,21 @@
 //! analytic block per cell, and the transport's face flows by AD over the two cells'
 //! sigma_k and Sigma_g.
 //!
-//! Not carried yet (refused by src/model/scene_validation.cpp): porous bins (psi_k), the
-//! snow line, planetesimals per bin, erosion and bouncing.
+//! Porous bins (growth.porosity): a second variable per bin and cell, psi_k = sigma_k
+//! <1/phi>_m (Okuzumi, Tanaka & Sakagami 2009 volume averaging; spec §15.1), transported
+//! by the same flux operator with the same face St as sigma_k: with first-order upwind
+//! advection its flow is (psi/sigma)_upwind times sigma's, the tracer moment of spec §6.2
+//! and §15.4, and a uniform psi/sigma stays uniform (the van Leer limiter is homogeneous
+//! of degree one). The coefficients and the bins' St then depend on the state through
+//! u_k = psi_k/sigma_k and are rebuilt from it at every right-hand side and Jacobian (the
+//! gas of the last refresh, as compact). Jacobian: the engine's dense 2N x 2N block with
+//! the derivatives of K, p_frag and the product porosity by ln u (cell_coefficients with
+//! derivatives; forward differences of 1e-6), and the face flows' dependence on u through
+//! St (d St/d ln u by the same forward difference); the compaction floors' dependence on
+//! u through St is held fixed.
+//!
+//! Not carried yet (refused by src/model/scene_validation.cpp): the snow line,
+//! planetesimals per bin, erosion and bouncing.
 #include <span>
 #include <string>
 #include <vector>
@@ -59,11 +72,23 @@ class SizeDistribution : public PhysicsModule {
   const physics::coagulation::MassGrid& mass_grid() const { return engine_.grid(); }
   int n_bins() const { return n_bins_; }
   int bin_slot(int k) const { return slot0_ + k; }
+  bool porous() const { return porous_; }
+  //! Variables per cell, from bin_slot(0) on: sigma_k, then (porous) psi_k.
+  int cell_vars() const { return porous_ ? 2 * n_bins_ : n_bins_; }
+  //! Slot of psi_k (porous only).
+  int psi_slot(int k) const { return slot0_ + n_bins_ + k; }
+  //! Filling factor of bin k of `cell`: sigma_k/psi_k, 1 for an empty bin or compact [-].
+  double phi(int cell, int k, std::span<const double> y) const;
+  //! The coagulation coefficients of `cell` at state y (as the right-hand side uses
+  //! them).
+  physics::coagulation::CellCoefficients coefficients(int cell,
+                                                      std::span<const double> y) const;
   //! Radius of every bin [cm] (compact, the species of cell 0).
   std::vector<double> bin_radii() const;
 
   //! The initial bins of a cell holding sigma_d [g cm^-2]: MRN, sigma_k ∝ a_k^(1/2) for
-  //! a_k <= a_max_init (n(a) ∝ a^-3.5 per log bin, as DustPy), or all in the first bin.
+  //! a_k <= a_max_init (n(a) ∝ a^-3.5 per log bin, as DustPy), or all in the first bin;
+  //! porous (bins holds cell_vars()): psi_k = sigma_k, compact aggregates.
   void initial_cell(double sigma_d, std::span<double> bins) const;
   double sigma_d(int cell, std::span<const double> y) const;  //!< sum of the bins
   //! The mass-dominating bin of the cell: argmax sigma_k (DustPy's a_rep).
@@ -89,16 +114,29 @@ class SizeDistribution : public PhysicsModule {
   std::vector<OutputField> output_fields() const override;
   //! Transport: the face flows of every bin; coagulation: the dense block of every cell.
   void declare_pattern(PatternBuilder& pattern) const override;
+  //! The transport part of add_rhs: the face flows of every bin (and psi_k) added to
+  //! ydot (porous: the bins' St from y).
+  void add_transport(std::span<const double> y, std::span<double> ydot) const;
   void add_rhs(double t, std::span<const double> y,
                std::span<double> ydot) const override;
   void add_jacobian(double t, std::span<const double> y,
                     JacobianValues& jac) const override;
 
  private:
-  //! The coefficients and St of every bin of `cell` from its gas.
+  //! The coefficients and St of every bin of `cell` from its gas (compact).
   void build_cell(int cell, const physics::LocalGas& gas) const;
+  //! The outcome model of `cell`'s species (DustPy's: spec §15.2).
+  physics::coagulation::CellModel cell_model(int cell) const;
+  //! Porous: the coefficients (with their derivatives by ln u for the Jacobian), St and
+  //! d St/d ln u of every bin of every cell from state y.
+  //! Without `coefficients` only St (and with `derivatives` d St/d ln u).
+  void update_porous(std::span<const double> y, bool coefficients,
+                     bool derivatives) const;
+
   //! The rows a face flow of bin k feeds: the two cells, m_out_dust (f = 0), a monitor.
   void face_rows(int f, int k, std::vector<long>& rows) const;
+  //! The rows of bin k's flow of sigma_k (face_rows) or (psi) of psi_k through face f.
+  void flow_rows(int f, int k, bool psi, std::vector<long>& rows) const;
   //! The Sigma_g of the cells of face f's stencil at state y.
   std::pair<double, double> face_gas(int f, std::span<const double> y) const;
 
@@ -110,12 +148,16 @@ class SizeDistribution : public PhysicsModule {
   DustFaceFlux flux_;
   SizeDistributionOptions opt_;
   physics::coagulation::Smoluchowski engine_;
+  bool porous_ = false;
   int n_bins_ = 0, slot0_ = -1, g_out_ = -1;
   double mass_unit_ = 1.0;
   std::vector<int> monitor_slot_;  //!< per face: global slot of its booking, or -1
   // per cell: the coagulation coefficients and the bins' St (refresh())
   mutable std::vector<physics::coagulation::CellCoefficients> coef_;
   mutable std::vector<double> st_;  //!< [cell * N + k]
+  //! porous, Jacobian: d St / d ln u of every bin [cell * N + k]
+  mutable std::vector<double> dst_dlnu_;
+  mutable std::vector<physics::LocalGas> gas_now_;  //!< per cell, of the last refresh
   mutable std::vector<double> scratch_;
 };
 

@@ -80,7 +80,7 @@ std::vector<double> Simulation::initial_state() const {
       distribution_->initial_cell(
           sigma_d0_[i],
           std::span<double>(y).subspan(L.index(i, distribution_->bin_slot(0)),
-                                       distribution_->n_bins()));
+                                       distribution_->cell_vars()));
     else
       y[L.index(i, transport_->sigma_slot())] = sigma_d0_[i];
     if (gas_.evolves()) y[L.index(i, gas_.slot)] = gas_.static_sigma[i];

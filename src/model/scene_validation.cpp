@@ -73,11 +73,7 @@ void validate_distribution(const Config& cfg) {
   if (cfg.str("model.kind") != "distribution") return;
   const std::string not_yet =
       " is not supported with model.kind = \"distribution\" yet (issue 35: the size "
-      "distribution is compact, without snow line, planetesimals, erosion or bouncing); ";
-  if (cfg.flag("porosity.enabled"))
-    cfg.fail("porosity.enabled", "= true (porous bins, psi_k)" + not_yet +
-                                     "set porosity.enabled = false or model.kind = "
-                                     "\"single_size\"");
+      "distribution has no snow line, planetesimals, erosion or bouncing); ";
   if (cfg.flag("snowline.enabled"))
     cfg.fail("snowline.enabled", "= true (its default)" + not_yet +
                                      "set snowline.enabled = false (one species "

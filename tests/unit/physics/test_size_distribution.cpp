@@ -146,7 +146,6 @@ TEST(SizeDistribution, OneBinWithoutGrowthIsTheSingleSizeTransport) {
 
 TEST(SizeDistribution, RefusesWhatItDoesNotCarryYet) {
   for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
-           {"porosity.enabled=true", "porosity.enabled"},
            {"snowline.enabled=true", "snowline.enabled"},
            {"planetesimals.si=\"d16\"", "planetesimals.si"},
            {"erosion.model=\"halt\"", "erosion.model"},
