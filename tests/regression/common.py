@@ -29,6 +29,14 @@ def parse_args():
     return args
 
 
+def write_file(folder, name, text):
+    """Writes `text` to folder/name (a scene, a table the test makes) and returns the path."""
+    path = os.path.join(folder, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
 def run_checked(cmd, expect=0, env=None):
     """Runs cmd; returns the CompletedProcess. Raises SystemExit, printing the command and
     its output, when the exit code is not `expect` (None: any)."""

@@ -7,7 +7,7 @@ planetesimal channel names each switch; the fiducial scene says it is porous and
 any speed."""
 import os
 
-from common import REPO, Checks, parse_args, run_checked
+from common import REPO, Checks, parse_args, run_checked, write_file
 
 
 def growth_lines(text):
@@ -17,9 +17,7 @@ def growth_lines(text):
 def main():
     args = parse_args()
     c = Checks()
-    minimal = os.path.join(args.workdir, "minimal.toml")
-    with open(minimal, "w") as f:
-        f.write("[disk]\nT_1au = 150.0\nalpha = 1e-4\n")
+    minimal = write_file(args.workdir, "minimal.toml", "[disk]\nT_1au = 150.0\nalpha = 1e-4\n")
     out = os.path.join(args.workdir, "minimal.h5")
     for label, cmd in [
             ("run", [args.exe, "run", minimal, "-o", out, "--overwrite",

@@ -16,7 +16,7 @@ import re
 
 import numpy as np
 
-from common import REPO, Checks, load_run, parse_args, run, run_checked
+from common import REPO, Checks, load_run, parse_args, run, run_checked, write_file
 
 GROWTH_OFF = ["growth.enabled=false", "porosity.enabled=false",
               "planetesimals.coagulation=false"]
@@ -25,11 +25,10 @@ GROWTH_OFF = ["growth.enabled=false", "porosity.enabled=false",
 def main():
     args = parse_args()
     c = Checks()
-    table = os.path.join(args.workdir, "mmsn.csv")
-    with open(table, "w") as f:
-        f.write("# the fiducial power law, tabulated\nr_au,sigma_g_gcm2,T_K\n")
-        for r in np.geomspace(1.0, 300.0, 40):
-            f.write(f"{r!r},{1700.0 * r ** -1.5!r},{280.0 * r ** -0.5!r}\n")
+    rows = "".join(f"{r!r},{1700.0 * r ** -1.5!r},{280.0 * r ** -0.5!r}\n"
+                   for r in np.geomspace(1.0, 300.0, 40))
+    table = write_file(args.workdir, "mmsn.csv",
+                       "# the fiducial power law, tabulated\nr_au,sigma_g_gcm2,T_K\n" + rows)
     outs, steps = {}, {}
     for model in ("powerlaw", "table"):
         outs[model] = os.path.join(args.workdir, f"{model}.h5")
