@@ -1,5 +1,6 @@
 #include "src/model/output_table.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace panoptic {
@@ -20,6 +21,34 @@ Config every_process_scene() {
       "porosity.enabled=true", "erosion.model=balance", "planetesimals.coagulation=true",
       "planetesimals.si=d16"};
   return load_scene_text("", "every process", on);
+}
+
+Config distribution_scene() {
+  const std::vector<std::string> on{"model.kind=distribution", "grid.n_cells=16",
+                                    "gas.evolve=true",         "growth.enabled=true",
+                                    "porosity.enabled=false",  "snowline.enabled=false"};
+  return load_scene_text("", "size distribution", on);
+}
+
+void merge_entries(std::vector<OutputEntry>& rows, std::span<const OutputEntry> more,
+                   const std::string& model) {
+  auto group_of = [](const std::string& path) {
+    return path.substr(0, path.find_first_of("/@"));
+  };
+  for (const OutputEntry& e : more) {
+    const auto same = std::find_if(
+        rows.begin(), rows.end(), [&](const OutputEntry& r) { return r.path == e.path; });
+    if (same != rows.end()) {
+      if (same->description != e.description)
+        same->description += "; " + model + ": " + e.description;
+      continue;
+    }
+    // after the last row of its group, so that a group's rows stay together
+    const auto last = std::find_if(rows.rbegin(), rows.rend(), [&](const OutputEntry& r) {
+      return group_of(r.path) == group_of(e.path);
+    });
+    rows.insert(last.base(), {e.path, e.units, "(" + model + ") " + e.description});
+  }
 }
 
 std::vector<OutputEntry> output_entries(const std::string& group,

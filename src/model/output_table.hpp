@@ -19,6 +19,18 @@ namespace panoptic {
 //! is.
 Config every_process_scene();
 
+//! A small scene of the size-distribution model (model.kind = "distribution", evolving
+//! gas, growth): its model declares the fields the single-size one has not (sigma(r, m),
+//! the mass grid) and describes some shared ones otherwise.
+Config distribution_scene();
+
+//! Merges the rows of another model into `rows`: a path not listed yet goes after the
+//! last row of its group (at the end if none), its description led by "(<model>)"; a listed path the other model describes otherwise
+//! gets "; <model>: <its description>" (a field of both models keeps one row, as a file
+//! has one dataset of that name).
+void merge_entries(std::vector<OutputEntry>& rows, std::span<const OutputEntry> more,
+                   const std::string& model);
+
 //! The rows of datasets /<group>/<name> declared as OutputField.
 std::vector<OutputEntry> output_entries(const std::string& group,
                                         std::span<const OutputField> fields);

@@ -11,23 +11,39 @@
 
 namespace panoptic {
 
-std::string output_reference_markdown() {
-  const Simulation every(every_process_scene());  // so every field is declared
+namespace {
+
+//! The rows a model declares, in the order of the file: static datasets and attributes,
+//! snapshots, time series, summary.
+std::vector<OutputEntry> model_entries(const Simulation& sim) {
   std::vector<OutputEntry> rows;
   auto add = [&rows](std::vector<OutputEntry> more) {
     rows.insert(rows.end(), more.begin(), more.end());
   };
-  add(output_entries(RunOutput::root_attributes({}, "")));
-  add(output_entries(variant_attributes({})));
-  add(output_entries(every.static_fields()));
-  add(output_entries(every.output_attributes()));
+  add(output_entries(sim.static_fields()));
+  add(output_entries(sim.output_attributes()));
   rows.push_back(RunOutput::snapshot_time());
-  add(output_entries("snapshots", every.output_fields()));
-  add(output_entries("snapshots", RunDiagnostics::output_fields(every)));
-  add(output_entries("timeseries", RunDiagnostics::timeseries_fields(every)));
-  add(output_entries(RunDiagnostics::timeseries_attributes(every)));
-  add(output_entries("summary", RunDiagnostics::summary_fields(every)));
-  add(output_entries(RunOutput::solver_attributes(SolverStats{}, 0.0, "")));
+  add(output_entries("snapshots", sim.output_fields()));
+  add(output_entries("snapshots", RunDiagnostics::output_fields(sim)));
+  add(output_entries("timeseries", RunDiagnostics::timeseries_fields(sim)));
+  add(output_entries(RunDiagnostics::timeseries_attributes(sim)));
+  add(output_entries("summary", RunDiagnostics::summary_fields(sim)));
+  return rows;
+}
+
+}  // namespace
+
+std::string output_reference_markdown() {
+  // the single-size model with every process on, then what the size distribution adds
+  std::vector<OutputEntry> rows = output_entries(RunOutput::root_attributes({}, ""));
+  for (const OutputEntry& e : output_entries(variant_attributes({}))) rows.push_back(e);
+  std::vector<OutputEntry> model = model_entries(Simulation(every_process_scene()));
+  merge_entries(model, model_entries(Simulation(distribution_scene())),
+                "model.kind = \"distribution\"");
+  rows.insert(rows.end(), model.begin(), model.end());
+  for (const OutputEntry& e :
+       output_entries(RunOutput::solver_attributes(SolverStats{}, 0.0, "")))
+    rows.push_back(e);
   return output_table_markdown(rows);
 }
 

@@ -1,8 +1,9 @@
 """`panoptic reference --outputs` lists every dataset and attribute of a run's output, and
 only those: a fiducial run (short) and one with the processes the fiducial scene leaves
-off (evolving gas, erosion) are listed entry by entry (datasets as group/name, attributes
+off (evolving gas, erosion) and a size-distribution run (params/tests/
+distribution_small.toml) are listed entry by entry (datasets as group/name, attributes
 of the root and of the groups as group@name, "@name" at the root), every listed entry is
-in one of the two files, and every dataset carries its units and description attributes
+in one of the three files, and every dataset carries its units and description attributes
 with the listed units."""
 import os
 
@@ -52,9 +53,11 @@ def main():
     c = Checks()
     rows = listed(args.exe)
     files = {}
-    for tag, sets in (("fiducial", SHORT), ("every process", SHORT + REST)):
+    for tag, scene, sets in (("fiducial", "params/fiducial.toml", SHORT),
+                             ("every process", "params/fiducial.toml", SHORT + REST),
+                             ("distribution", "params/tests/distribution_small.toml", SHORT)):
         out = os.path.join(args.workdir, tag.replace(" ", "_") + ".h5")
-        run(args.exe, "params/fiducial.toml", out, sets)
+        run(args.exe, scene, out, sets)
         files[tag] = entries(out)
         missing = sorted(p for p in files[tag] if p not in rows)
         c.check(not missing, f"{tag}: every entry of the file ({len(files[tag])}) is listed"

@@ -32,18 +32,18 @@ std::string units_of(hid_t g, const std::string& name) {
   return h5::get_attr_string(ds.get(), "units");
 }
 
-}  // namespace
-
-TEST(OutputTable, ListsEveryFieldOfAFiducialOutput) {
-  const Simulation fiducial(load_scene(fiducial_scene(), {}));
+// Every dataset a scene's output is set up with (prepare_output and the diagnostics'
+// declarations) is a row of the table, with the units attribute the file carries.
+void expect_every_dataset_listed(const std::string& scene, const std::string& tag) {
+  const Simulation sim(load_scene(scene, {}));
   const fs::path dir = fs::temp_directory_path() / "panoptic_output_fields";
   fs::create_directories(dir);
-  const fs::path path = dir / "fiducial.h5";
+  const fs::path path = dir / (tag + ".h5");
   fs::remove(path);
   {
-    RunOutput out(path, false, {"fiducial", "", "", ""});
-    fiducial.prepare_output(out);
-    RunDiagnostics diag(fiducial, out, 0.0);
+    RunOutput out(path, false, {tag, "", "", ""});
+    sim.prepare_output(out);
+    RunDiagnostics diag(sim, out, 0.0);
     out.start_appending();  // the file set up aside moves into place
   }
   const std::string table = output_reference_markdown();
@@ -53,15 +53,33 @@ TEST(OutputTable, ListsEveryFieldOfAFiducialOutput) {
   for (const char* group : {"grid", "disk", "pebbles", "snapshots"}) {
     h5::Handle g = h5::open_group(file.get(), group);
     const auto names = h5::dataset_names(g.get());
-    ASSERT_FALSE(names.empty()) << group;
+    ASSERT_FALSE(names.empty()) << tag << " " << group;
     for (const std::string& name : names) {
       if (name == "time") continue;  // the stacks' own time axis (RunOutput), not a field
       const std::string units = units_of(g.get(), name);
       const std::string row = "| " + std::string(group) + "/" + name + " | " +
                               (units.empty() ? "-" : units) + " | ";
-      EXPECT_NE(table.find(row), std::string::npos) << row << "\n" << table;
+      EXPECT_NE(table.find(row), std::string::npos) << tag << ": " << row << "\n"
+                                                    << table;
     }
   }
+}
+
+}  // namespace
+
+TEST(OutputTable, ListsEveryFieldOfAFiducialOutput) {
+  expect_every_dataset_listed(fiducial_scene(), "fiducial");
+}
+
+TEST(OutputTable, ListsEveryFieldOfADistributionOutput) {
+  // the size distribution's own datasets (/snapshots/sigma, /grid/m_bins, a_bins) too
+  expect_every_dataset_listed(
+      std::string(PANOPTIC_SOURCE_DIR) + "/params/tests/distribution_small.toml",
+      "distribution_small");
+  const std::string table = output_reference_markdown();
+  for (const char* row : {"| snapshots/sigma | g cm^-2 | ", "| grid/m_bins | g | ",
+                          "| grid/a_bins | cm | "})
+    EXPECT_NE(table.find(row), std::string::npos) << row;
 }
 
 TEST(OutputTable, EveryProcessSceneDeclaresTheFieldsOfEveryModule) {
