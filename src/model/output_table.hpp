@@ -25,9 +25,9 @@ Config every_process_scene();
 Config distribution_scene();
 
 //! Merges the rows of another model into `rows`: a path not listed yet goes after the
-//! last row of its group (at the end if none), its description led by "(<model>)"; a listed path the other model describes otherwise
-//! gets "; <model>: <its description>" (a field of both models keeps one row, as a file
-//! has one dataset of that name).
+//! last row of its group (at the end if none), its description led by "(<model>)"; a
+//! listed path the other model describes otherwise gets "; <model>: <its description>"
+//! (a field of both models keeps one row, as a file has one dataset of that name).
 void merge_entries(std::vector<OutputEntry>& rows, std::span<const OutputEntry> more,
                    const std::string& model);
 
