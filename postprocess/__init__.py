@@ -17,9 +17,9 @@ Modules:
     overlay   -- figures of several runs: profiles at a time, outcomes vs time
     style     -- figure sizes (column widths), save with or without the footer
     analytic  -- closed-form solutions used by the regression tests
-    plot, plot_run, plot_scan, plot_observe -- the figures and their command lines
-                 (panoptic-plot-profiles, panoptic-plot, panoptic-plot-scan,
-                 panoptic-plot-observe; python3 -m postprocess.plot_run from the repository)
+    plot, plot_run, plot_scan, plot_observe, plot_distribution -- the figures and their
+                 command lines (panoptic-plot-profiles, panoptic-plot, panoptic-plot-scan,
+                 panoptic-plot-observe, panoptic-plot-distribution; python3 -m postprocess.plot_run from the repository)
 """
 import sys
 
@@ -39,7 +39,8 @@ __all__ = [*_EXPORTS, "__version__"]
 
 
 _SUBMODULES = ("reader", "scan", "launch", "observation", "overlay", "style", "plot",
-               "plot_run", "plot_scan", "plot_observe", "analytic", "xarray_view")
+               "plot_run", "plot_scan", "plot_observe", "plot_distribution", "analytic",
+               "xarray_view")
 
 
 def __getattr__(name):

@@ -344,6 +344,23 @@ class Run:
                           stacklevel=2)
         return t, self.snapshots[name][i]
 
+    @property
+    def has_distribution(self):
+        """True for a size-distribution run (model.kind = "distribution"): the file has
+        /snapshots/sigma and the mass grid /grid/m_bins, a_bins."""
+        return "sigma" in self.snapshots and "m_bins" in self.grid
+
+    def size_distribution(self, t_yr):
+        """(time [yr], sigma (N, n_bins) [g cm^-2]) of a size-distribution run at the
+        snapshot nearest t_yr (as at_time): the dust surface density of each mass bin
+        /grid/m_bins [g] (radii /grid/a_bins [cm]) in each cell; its sum over the bins is
+        /snapshots/sigma_d. KeyError for a single-size run."""
+        if not self.has_distribution:
+            raise KeyError(f"{self.path} holds no size distribution (/snapshots/sigma, "
+                           f"/grid/m_bins): a run with model.kind = \"distribution\" has")
+        t, flat = self.at_time("sigma", t_yr)
+        return t, np.asarray(flat).reshape(len(self.r_c), len(self.grid["m_bins"]))
+
     def to_xarray(self):
         """The snapshots as an xarray.Dataset: dims t [yr] and r [au] (cell centres) or
         r_f [au] (faces) or monitor, each variable with its `units` and `description`

@@ -22,7 +22,7 @@ import numpy as np
 # the repository root, for `postprocess` when run without PYTHONPATH
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-from postprocess import analytic, plot, plot_run, plot_scan, reader  # noqa: E402
+from postprocess import analytic, plot, plot_distribution, plot_run, plot_scan, reader  # noqa: E402
 
 AU = 1.496e13    # [cm]
 YR = 3.156e7     # [s]
@@ -892,6 +892,80 @@ def check_snapshot_selection(tmp):
     return f"select_snapshots: {len(chosen)} of {len(time)}, evenly spaced in log t"
 
 
+def write_distribution_run(path, n_cells=12, n_bins=20):
+    """A synthetic size-distribution run (model.kind = "distribution"): /snapshots/sigma
+    (nt, n_cells * n_bins) cell by cell, deflated as panoptic writes it, the mass grid,
+    and sigma_d, a, St from it; returns (time, sigma (nt, n_cells, n_bins), a_bins)."""
+    time_yr = np.array([0.0, 1e3, 1e4])
+    write_run(path, n_cells=n_cells, time_yr=time_yr)
+    with h5py.File(path, "r") as f:
+        r_c = f["grid/r_c"][:]
+    m_bins = np.geomspace(1e-12, 1e2, n_bins)
+    a_bins = (3 * m_bins / (4 * np.pi * 1.67)) ** (1 / 3)
+    # a log-normal in a per cell, its peak growing with time and shrinking with r
+    peak = 1e-4 * (1 + time_yr[:, None, None] / 1e2) / r_c[None, :, None]
+    sigma = np.exp(-0.5 * np.log(a_bins[None, None, :] / peak) ** 2) * r_c[None, :, None] ** -1
+    sigma[..., -3:] = 0.0                       # empty top bins, as before growth
+    with h5py.File(path, "a") as f:
+        f.attrs["config_toml"] = (CONFIG_TOML + '\n[model]\nkind = "distribution"\n'
+                                  '[material]\nice_rho0 = 1.67\n[fragmentation]\n'
+                                  'enabled = true\nv_frag_ice_m_s = 1.0\n')
+        write_dataset(f["grid"], "m_bins", m_bins, "g", "mass of every bin")
+        write_dataset(f["grid"], "a_bins", a_bins, "cm", "radius of every bin")
+        write_dataset(f["disk"], "c_s", np.full(n_cells, 5e4), "cm s^-1", "sound speed")
+        write_dataset(f["disk"], "eta", np.full(n_cells, 2e-3), "", "eta")
+        snap = f["snapshots"]
+        for name in ("sigma_d", "a", "St"):
+            del snap[name]
+        dset = snap.create_dataset("sigma", data=sigma.reshape(len(time_yr), -1),
+                                   chunks=(1, n_cells * n_bins), compression="gzip",
+                                   shuffle=True, maxshape=(None, n_cells * n_bins))
+        dset.attrs["units"], dset.attrs["description"] = "g cm^-2", "sigma(r, m)"
+        dominant = a_bins[np.argmax(sigma, axis=2)]
+        write_dataset(snap, "sigma_d", sigma.sum(axis=2), "g cm^-2", "sum of the bins", True)
+        write_dataset(snap, "a", dominant, "cm", "mass-dominating radius", True)
+        write_dataset(snap, "St", dominant / 10.0, "", "St of the mass-dominating bin", True)
+    return time_yr, sigma, a_bins
+
+
+def check_distribution_panel(tmp):
+    """run.size_distribution gives sigma (cells, bins) of the chosen snapshot, whose sum
+    over the bins is sigma_d; the panel's map shows exactly those values (bins as rows),
+    its sigma(a) curves are those of the nearest cells, and the command writes a PNG."""
+    path = os.path.join(tmp, "distribution.h5")
+    time_yr, sigma, a_bins = write_distribution_run(path)
+    run = reader.load_run(path)
+    assert run.has_distribution and not reader.load_run(write_full_run_path(tmp)).has_distribution
+    t, s = run.size_distribution(1.1e3)
+    assert t == 1e3 and s.shape == sigma.shape[1:], (t, s.shape)
+    assert np.array_equal(s, sigma[1])
+    assert np.allclose(s.sum(axis=1), run.at_time("sigma_d", t)[1], rtol=1e-14)
+    fig = plot_distribution.panel(run, 1e3, radii_au=[1.0, 10.0])
+    ax_map, ax_dist = fig.axes[0], fig.axes[1]
+    shown = ax_map.collections[0].get_array()
+    values = np.ma.filled(shown, 0.0).reshape(len(a_bins), -1)
+    top = sigma[1].max()
+    expect = np.where(sigma[1].T > top * 10.0 ** -plot_distribution.DECADES, sigma[1].T, 0.0)
+    assert np.array_equal(values, expect), "map differs from sigma(r, a)"
+    i10 = int(np.argmin(np.abs(np.log(run.r_c / 10.0))))
+    y = ax_dist.lines[1].get_ydata()
+    assert np.array_equal(np.nan_to_num(y), sigma[1][i10]), "sigma(a) at 10 au"
+    a_rep = ax_map.lines[0].get_ydata()
+    assert np.array_equal(a_rep, a_bins[np.argmax(sigma[1], axis=1)])
+    out = os.path.join(tmp, "dist_plots")
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert plot_distribution.main([path, "-o", out, "--time-yr", "1e4"]) == 0
+    assert _is_png(os.path.join(out, "distribution.png"))
+    return f"sigma {s.shape}, sums equal sigma_d, map and curves equal the data"
+
+
+def write_full_run_path(tmp):
+    """A single-size run file (no distribution)."""
+    path = os.path.join(tmp, "single_size_for_distribution.h5")
+    write_run(path, n_cells=8)
+    return path
+
+
 def _is_png(path):
     """True if path exists and starts with the PNG signature."""
     with open(path, "rb") as f:
@@ -912,7 +986,8 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_torn_dataset,
           check_snow_line_off, check_t_first_off_axis_label, check_plot_scan,
           check_dust_to_gas_map_centre, check_plot_unfinished_title,
           check_plot_run_transport_only, check_plot_run_degraded,
-          check_plot_run_failure_status, check_plot_run_single_snapshot]
+          check_plot_run_failure_status, check_plot_run_single_snapshot,
+          check_distribution_panel]
 
 
 def main():
