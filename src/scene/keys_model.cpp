@@ -11,12 +11,13 @@ UsedWhen distribution() { return one_of("model.kind", {"distribution"}); }
 // [model] spec §15: one particle per cell, or the whole size distribution
 std::vector<KeySpec> model_keys() {
   return {
-      choice("model.kind", "single_size", {"single_size", "distribution"},
-             "single_size = the mass-dominating particle of each cell (spec §2-§7); "
-             "distribution = the size distribution of each cell on a log-spaced mass "
-             "grid, coagulated by the Smoluchowski equation and every bin transported "
-             "with its own St (spec §15; compact only, no snow line, no planetesimals, "
-             "no erosion or bouncing yet: params/README.md)"),
+      choice(
+          "model.kind", "single_size", {"single_size", "distribution"},
+          "single_size = the mass-dominating particle of each cell (spec §2-§7); "
+          "distribution = the size distribution of each cell on a log-spaced mass "
+          "grid, coagulated by the Smoluchowski equation and every bin transported "
+          "with its own St (spec §15; compact or porous; no snow line, no planetesimals, "
+          "no erosion or bouncing yet: params/README.md)"),
       // > 1/log10(2) = 3.32: the two-bin split of a sticking pair needs a bin ratio
       // below 2 (physics/coagulation/mass_grid.hpp)
       when({distribution()},
