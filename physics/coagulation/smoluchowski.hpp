@@ -373,14 +373,20 @@ class Smoluchowski {
             }
             continue;
           }
+          // the target's share: cratered (it keeps target_net, the remnant split over
+          // rem_bin and rem_bin + 1) or shattered (it loses m_i); booked into the mass
+          // rows and, porous, with the same coefficients into the volume rows
+          auto target_outcome = [&](auto&& book) {
+            if (p.crater) {
+              book(i, p.target_net);
+              book(p.rem_bin, p.rem_lo);
+              if (!p.rem_same) book(p.rem_bin + 1, p.rem_hi);
+            } else {
+              book(i, -m[i]);
+            }
+          };
           mass(j, -m[j]);
-          if (p.crater) {
-            mass(i, p.target_net);
-            mass(p.rem_bin, p.rem_lo);
-            if (!p.rem_same) mass(p.rem_bin + 1, p.rem_hi);
-          } else {
-            mass(i, -m[i]);
-          }
+          target_outcome(mass);
           const std::size_t q = p.frag_bin;
           auto gm = [&](int col) -> double& {
             return g_mass_[static_cast<std::size_t>(col) * n + q];
@@ -397,13 +403,7 @@ class Smoluchowski {
             vol_j(j, -m[j]);
             // fragments' volume: m_j u_j + (crater ? x : m_i) u_t
             const double ct = p.crater ? p.excavated : m[i];
-            if (p.crater) {
-              vol_t(i, p.target_net);
-              vol_t(p.rem_bin, p.rem_lo);
-              if (!p.rem_same) vol_t(p.rem_bin + 1, p.rem_hi);
-            } else {
-              vol_t(i, -m[i]);
-            }
+            target_outcome(vol_t);
             auto g = [&](int col) -> double& {
               return g_psi_[static_cast<std::size_t>(col) * n + q];
             };
