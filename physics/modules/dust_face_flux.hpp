@@ -62,6 +62,21 @@ inline std::vector<BudgetTerm> outflow_budget_terms(
            std::move(sublimated)}};
 }
 
+//! What the model reads of the module that carries the dust over the grid: DustTransport
+//! (one population per cell) or SizeDistribution (every mass bin), whichever the scene
+//! builds (model.kind). The mass on the grid, the pebble fluxes and the booked pebble
+//! masses (spec §8) are read through it, so no caller asks which one it is.
+class DustCarrier {
+ public:
+  virtual ~DustCarrier() = default;
+  //! Sigma_d of a cell at state y [g cm^-2].
+  virtual double sigma_d(int cell, std::span<const double> y) const = 0;
+  //! Dust mass flow through every face, positive outward [g s^-1]; n_cells + 1 entries.
+  virtual std::vector<double> mass_flow(std::span<const double> y) const = 0;
+  //! The unit of the booked masses (the initial dust mass on the grid) [g].
+  virtual double mass_unit() const = 0;
+};
+
 class DustFaceFlux {
  public:
   //! `viscous` is null for static gas.

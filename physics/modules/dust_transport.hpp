@@ -33,7 +33,7 @@ class GasDisk;
 class Grid;
 struct ViscousStencil;
 
-class DustTransport : public CellRangeForm<DustTransport> {
+class DustTransport : public CellRangeForm<DustTransport>, public DustCarrier {
  public:
   //! Registers Sigma_d (cell) and m_out_dust (global). `viscous` is null for static gas.
   //! `sigma_scale` [g cm^-2] sets CVODE's absolute tolerance scale; `dust_mass` [g] is
@@ -82,9 +82,11 @@ class DustTransport : public CellRangeForm<DustTransport> {
   std::vector<OutputField> output_fields() const override;
   double mass_out(std::span<const double> y) const;         //!< through r_in [g]
   double mass_sublimated(std::span<const double> y) const;  //!< at the snow line [g]
-  double mass_unit() const { return mass_unit_; }
-  //! Dust mass flow through every face, positive outward [g s^-1]; n_cells + 1 entries.
-  std::vector<double> mass_flow(std::span<const double> y) const;
+  double sigma_d(int cell, std::span<const double> y) const override {
+    return y[layout_.index(cell, slot_)];
+  }
+  double mass_unit() const override { return mass_unit_; }
+  std::vector<double> mass_flow(std::span<const double> y) const override;
   //! Dust radial velocity on every face [cm s^-1] (0 on the outer face).
   std::vector<double> face_velocity(std::span<const double> y) const;
 

@@ -57,7 +57,7 @@ struct SizeDistributionOptions {
   physics::GrowthOptions growth;  //!< drag law, turbulence, fragmentation switch
 };
 
-class SizeDistribution : public PhysicsModule {
+class SizeDistribution : public PhysicsModule, public DustCarrier {
  public:
   //! Registers sigma_0 ... sigma_{N-1} (cell) and m_out_dust (global). `viscous` is null
   //! for static gas; `species` per cell (one species: no snow line yet); `sigma_scale`
@@ -90,7 +90,8 @@ class SizeDistribution : public PhysicsModule {
   //! a_k <= a_max_init (n(a) ∝ a^-3.5 per log bin, as DustPy), or all in the first bin;
   //! porous (bins holds cell_vars()): psi_k = sigma_k, compact aggregates.
   void initial_cell(double sigma_d, std::span<double> bins) const;
-  double sigma_d(int cell, std::span<const double> y) const;  //!< sum of the bins
+  double sigma_d(int cell,
+                 std::span<const double> y) const override;  //!< sum of the bins
   //! The mass-dominating bin of the cell: argmax sigma_k (DustPy's a_rep).
   int dominant_bin(int cell, std::span<const double> y) const;
   //! St of the mass-dominating bin of every cell.
@@ -102,10 +103,9 @@ class SizeDistribution : public PhysicsModule {
   //! global variable in units of mass_unit(); face 0 is m_out_dust. Before set-up ends.
   int add_monitor(StateLayout& layout, int face);
   int m_out_slot() const { return g_out_; }
-  double mass_unit() const { return mass_unit_; }
+  double mass_unit() const override { return mass_unit_; }
   double mass_out(std::span<const double> y) const;  //!< through r_in [g]
-  //! Dust mass flow through every face, positive outward [g s^-1]; n_cells + 1 entries.
-  std::vector<double> mass_flow(std::span<const double> y) const;
+  std::vector<double> mass_flow(std::span<const double> y) const override;
 
   std::string_view name() const override { return "size_distribution"; }
   //! m_out_inner and m_sublimated (0: no snow line yet) [g].

@@ -2,8 +2,7 @@
 
 #include <cmath>
 
-#include "physics/modules/dust_transport.hpp"
-#include "physics/modules/size_distribution.hpp"
+#include "physics/modules/dust_face_flux.hpp"
 #include "src/core/error.hpp"
 #include "src/core/units.hpp"
 #include "src/model/simulation.hpp"
@@ -38,8 +37,7 @@ std::vector<PebbleMonitor> place_pebble_monitors(const Config& cfg, const Grid& 
 }
 
 std::vector<double> Simulation::pebble_flux(std::span<const double> y) const {
-  const auto mdot =
-      distribution_ ? distribution_->mass_flow(y) : transport_->mass_flow(y);
+  const auto mdot = dust_->mass_flow(y);
   std::vector<double> out;
   for (const auto& mon : monitors_) out.push_back(-mdot[mon.face]);  // inward positive
   return out;
@@ -48,8 +46,7 @@ std::vector<double> Simulation::pebble_flux(std::span<const double> y) const {
 std::vector<double> Simulation::pebble_mass(std::span<const double> y) const {
   std::vector<double> out;
   for (const auto& mon : monitors_)
-    out.push_back(y[layout_->global_index(mon.global_slot)] *
-                  (distribution_ ? distribution_->mass_unit() : transport_->mass_unit()));
+    out.push_back(y[layout_->global_index(mon.global_slot)] * dust_->mass_unit());
   return out;
 }
 

@@ -161,8 +161,7 @@ std::string Simulation::describe_state(long index, std::span<const double> y) co
   const double* yc = &y[L.index(i, 0)];
   std::ostringstream s;
   s.precision(4);
-  s << "r = " << grid_.r_c(i) / kAu << " au, Sigma_d = "
-    << (distribution_ ? distribution_->sigma_d(i, y) : yc[transport_->sigma_slot()])
+  s << "r = " << grid_.r_c(i) / kAu << " au, Sigma_d = " << dust_->sigma_d(i, y)
     << " g cm^-2";
   if (gas_.evolves()) s << ", Sigma_g = " << gas_.sigma(i, yc) << " g cm^-2";
   if (growth_) s << ", m = " << codec_->mass(i, yc) << " g, phi = " << codec_->phi(yc);

@@ -93,6 +93,7 @@ Simulation::Simulation(const Config& cfg)
   growth_ = ctx.growth;
   planetesimals_ = ctx.planetesimals;
   distribution_ = ctx.distribution;
+  dust_ = distribution_ ? static_cast<const DustCarrier*>(distribution_) : transport_;
   modules_in_build_order_ = ctx.built;
   // The dust mass budget (spec §8), in the column order of /timeseries/mass_budget. A
   // process that removes dust from Sigma_d adds its term here (BudgetTerm).
@@ -190,10 +191,7 @@ std::vector<double> Simulation::output_times() const {
 
 double Simulation::dust_mass_on_grid(std::span<const double> y) const {
   double m = 0.0;
-  for (int i = 0; i < grid_.n_cells(); ++i)
-    m += (distribution_ ? distribution_->sigma_d(i, y)
-                        : y[layout_->index(i, transport_->sigma_slot())]) *
-         grid_.area(i);
+  for (int i = 0; i < grid_.n_cells(); ++i) m += dust_->sigma_d(i, y) * grid_.area(i);
   return m;
 }
 

@@ -27,6 +27,7 @@ namespace panoptic {
 class GasDisk;
 class RunOutput;
 class StokesModel;
+class DustCarrier;
 class DustTransport;
 class ViscousGas;
 class PorousGrowth;
@@ -148,6 +149,8 @@ class Simulation {
   const GrowthStokes* growth_stokes_ = nullptr;
   const Planetesimals* planetesimals_ = nullptr;
   const SizeDistribution* distribution_ = nullptr;
+  //! The module that carries the dust: distribution_ if built, else transport_.
+  const DustCarrier* dust_ = nullptr;
   std::vector<PebbleMonitor> monitors_;
   std::vector<BudgetTerm> budget_terms_;
   std::unique_ptr<DiskModel> model_;
