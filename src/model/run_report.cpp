@@ -19,6 +19,37 @@ using units::kAu;
 
 namespace {
 
+// The names of `count` variables as the header lists them, with a run of numbered names
+// (a size distribution's sigma_0 ... sigma_198) written as its first and last: a
+// distribution run's header would otherwise list hundreds of names.
+template <class NameOf>
+std::string variable_names(int count, NameOf name_of) {
+  const auto split = [](const std::string& n) -> std::pair<std::string, long> {
+    const auto us = n.rfind('_');
+    if (us == std::string::npos || us + 1 == n.size() ||
+        !std::all_of(n.begin() + us + 1, n.end(),
+                     [](char c) { return c >= '0' && c <= '9'; }))
+      return {n, -1};
+    return {n.substr(0, us + 1), std::stol(n.substr(us + 1))};
+  };
+  std::ostringstream s;
+  for (int k = 0; k < count;) {
+    const std::string first = name_of(k);
+    const auto [base, index] = split(first);
+    int last = k;
+    while (index >= 0 && last + 1 < count &&
+           split(name_of(last + 1)) == std::pair{base, index + (last + 1 - k)})
+      ++last;
+    s << " " << first;
+    if (last - k >= 2)
+      s << " ... " << name_of(last);
+    else if (last == k + 1)
+      s << " " << name_of(last);
+    k = last + 1;
+  }
+  return s.str();
+}
+
 // What the particles do, said in the header of every single-size run: the process
 // switches default to off (params/README.md, Scenes), so a scene without [growth] runs
 // transport alone at a prescribed St, and one with growth alone sticks compact
@@ -102,10 +133,10 @@ std::string Simulation::summary() const {
       s << " (inside the inner edge: all ice on the grid)";
     s << "\n";
   }
-  s << "state: " << L.size() << " variables; per cell:";
-  for (int k = 0; k < L.n_cell_vars(); ++k) s << " " << L.cell_var(k).name;
-  s << "; global:";
-  for (int k = 0; k < L.n_global_vars(); ++k) s << " " << L.global_var(k).name;
+  s << "state: " << L.size() << " variables; per cell:"
+    << variable_names(L.n_cell_vars(), [&](int k) { return L.cell_var(k).name; })
+    << "; global:"
+    << variable_names(L.n_global_vars(), [&](int k) { return L.global_var(k).name; });
   s << "\nmodules:";
   for (const auto& m : model_->modules()) s << " " << m->name();
   s << "\n" << physics_choices(cfg_);
