@@ -4,6 +4,7 @@
 //! decade (DustPy's default 7; Stammler & Birnstiel 2022). The two-bin split of a
 //! sticking product (physics/coagulation/smoluchowski.hpp) needs a regular log grid and a
 //! bin ratio below 2 (so that m_k + m_k lies above m_k's upper neighbour).
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -39,6 +40,31 @@ struct MassGrid {
   }
 
   int size() const { return static_cast<int>(m.size()); }
+
+  //! k with m_k <= x < m_{k+1}; -1 below the grid, size() - 1 at or above the last bin.
+  int lower_bin(double x) const {
+    const auto it = std::upper_bound(m.begin(), m.end(), x);
+    return static_cast<int>(it - m.begin()) - 1;
+  }
+
+  //! Where particles of mass x go on the grid: the two-bin split of Kovetz & Olund (1969)
+  //! (Brauer, Dullemond & Henning 2008, appendix A.1), eps particles of m_lo and 1 - eps
+  //! of m_{lo+1}, eps = (m_{lo+1} - x)/(m_{lo+1} - m_lo), which conserves number and
+  //! mass, given as the fractions of their mass that go to bins lo and lo + 1 (to_hi = 1
+  //! - to_lo: the mass conserved to round-off). Below the first bin all of it goes into
+  //! bin 0, at or above the last into the last (mass conserved, number not).
+  struct MassSplit {
+    int lo = 0;
+    double to_lo = 1.0, to_hi = 0.0;  //!< [-]
+  };
+  MassSplit split_mass(double x) const {
+    const int k = lower_bin(x);
+    if (k < 0) return {0, 1.0, 0.0};
+    if (k + 1 >= size()) return {size() - 1, 1.0, 0.0};
+    const double eps = (m[k + 1] - x) / (m[k + 1] - m[k]);
+    const double to_lo = eps * m[k] / x;
+    return {k, to_lo, 1.0 - to_lo};
+  }
 };
 
 }  // namespace panoptic::physics::coagulation

@@ -24,8 +24,8 @@ SizeDistribution::SizeDistribution(StateLayout& layout, const Grid& grid,
       species_(species),
       flux_(grid, disk, gas, viscous, transport),
       opt_(options),
-      engine_(coag::MassGrid(options.m_min > 0.0 ? options.m_min : species[0].m0,
-                             options.m_max, options.bins_per_decade)),
+      engine_(coag::MassGrid(first_bin_mass(options, species), options.m_max,
+                             options.bins_per_decade)),
       porous_(options.growth.porosity),
       n_bins_(engine_.size()),
       mass_unit_(dust_mass) {
@@ -55,6 +55,20 @@ SizeDistribution::SizeDistribution(StateLayout& layout, const Grid& grid,
     gas_now_.push_back(cell_gas.reference(i));
     build_cell(i, gas_now_[i]);
   }
+}
+
+double SizeDistribution::first_bin_mass(const SizeDistributionOptions& options,
+                                        const std::vector<physics::Species>& species) {
+  if (options.m_min > 0.0) return options.m_min;
+  // One grid for all cells, from the lightest monomers on it (the icy ones, rho0 below
+  // the silicates'): every cell's monomers then lie at or above the first bin, where its
+  // dust starts (monomer_bin); a grid from the heavier monomers would start the lighter
+  // species' dust above its monomer mass. Lighter still are the silicate cores of the
+  // smallest icy grains after sublimation, (1 - f_ice) m0: they go into the first bin
+  // (MassGrid::split_mass), keeping their mass.
+  double m0 = species[0].m0;
+  for (const physics::Species& sp : species) m0 = std::min(m0, sp.m0);
+  return m0;
 }
 
 coag::CellModel SizeDistribution::cell_model(int cell) const {
@@ -140,25 +154,32 @@ coag::CellCoefficients SizeDistribution::coefficients(int cell,
   return coef_[cell];
 }
 
-std::vector<double> SizeDistribution::bin_radii() const {
+std::vector<double> SizeDistribution::bin_radii(int cell) const {
   std::vector<double> a(n_bins_);
   for (int k = 0; k < n_bins_; ++k)
-    a[k] = physics::radius(engine_.grid().m[k], 1.0, species_[0].rho0);
+    a[k] = physics::radius(engine_.grid().m[k], 1.0, species_[cell].rho0);
   return a;
 }
 
-void SizeDistribution::initial_cell(double sigma_d, std::span<double> bins) const {
+int SizeDistribution::monomer_bin(int cell) const {
+  // 1e-9: the monomer mass that set the first bin is that bin, to round-off
+  return std::max(0, engine_.grid().lower_bin(species_[cell].m0 * (1.0 + 1e-9)));
+}
+
+void SizeDistribution::initial_cell(int cell, double sigma_d,
+                                    std::span<double> bins) const {
   std::fill(bins.begin(), bins.end(), 0.0);
+  const int k0 = monomer_bin(cell);
   if (!opt_.mrn) {
-    bins[0] = sigma_d;
-    if (bins.size() > static_cast<std::size_t>(n_bins_)) bins[n_bins_] = sigma_d;
+    bins[k0] = sigma_d;
+    if (bins.size() > static_cast<std::size_t>(n_bins_)) bins[n_bins_ + k0] = sigma_d;
     return;
   }
   // n(a) ∝ a^-3.5: the mass per logarithmic bin ∝ a^4 n(a) ∝ a^(1/2) (DustPy's MRN
-  // initial condition, distExp = -3.5); the first bin always holds some
-  const std::vector<double> a = bin_radii();
+  // initial condition, distExp = -3.5); the monomer bin always holds some
+  const std::vector<double> a = bin_radii(cell);
   double total = 0.0;
-  for (int k = 0; k < n_bins_ && (k == 0 || a[k] <= opt_.a_max_init); ++k) {
+  for (int k = k0; k < n_bins_ && (k == k0 || a[k] <= opt_.a_max_init); ++k) {
     bins[k] = std::sqrt(a[k]);
     total += bins[k];
   }
@@ -187,15 +208,37 @@ std::vector<double> SizeDistribution::dominant_st(std::span<const double> y) con
   return st;
 }
 
+int SizeDistribution::add_booked_mass(StateLayout& layout, const std::string& name,
+                                      const std::string& what) const {
+  return layout.add_global_var(booked_mass_info(name, what,
+                                                layout.cell_var(slot0_).abs_scale,
+                                                grid_.r_f(grid_.n_cells()), mass_unit_));
+}
+
 int SizeDistribution::add_monitor(StateLayout& layout, int face) {
   if (face == 0) return g_out_;
   if (monitor_slot_.empty()) monitor_slot_.assign(grid_.n_cells(), -1);
   if (monitor_slot_[face] < 0)
-    monitor_slot_[face] = layout.add_global_var(booked_mass_info(
-        "m_through_" + std::to_string(face),
-        "dust mass that crossed a face inward (pebble flux, spec §8)",
-        layout.cell_var(slot0_).abs_scale, grid_.r_f(grid_.n_cells()), mass_unit_));
+    monitor_slot_[face] =
+        add_booked_mass(layout, "m_through_" + std::to_string(face),
+                        "dust mass that crossed a face inward (pebble flux, spec §8)");
   return monitor_slot_[face];
+}
+
+void SizeDistribution::set_snowline(StateLayout& layout, int face, double f_ice) {
+  snow_face_ = face;
+  f_ice_ = f_ice;
+  g_sub_ =
+      add_booked_mass(layout, "m_sublimated", "ice that sublimated at the snow line");
+  // spec §6.3, §11 #18: bin k arrives as particles of (1 - f_ice) m_k, phi kept
+  const coag::MassGrid& grid = engine_.grid();
+  snow_split_.clear();
+  for (int k = 0; k < n_bins_; ++k)
+    snow_split_.push_back(grid.split_mass((1.0 - f_ice) * grid.m[k]));
+}
+
+double SizeDistribution::mass_sublimated(std::span<const double> y) const {
+  return g_sub_ < 0 ? 0.0 : y[layout_.global_index(g_sub_)] * mass_unit_;
 }
 
 double SizeDistribution::mass_out(std::span<const double> y) const {
@@ -208,18 +251,34 @@ std::pair<double, double> SizeDistribution::face_gas(int f,
   return {gas_.sigma(a, &y[layout_.index(a, 0)]), gas_.sigma(b, &y[layout_.index(b, 0)])};
 }
 
-void SizeDistribution::face_rows(int f, int k, std::vector<long>& rows) const {
-  rows.clear();
-  rows.push_back(layout_.index(f, bin_slot(k)));
-  if (f > 0) rows.push_back(layout_.index(f - 1, bin_slot(k)));
-  if (f == 0) rows.push_back(layout_.global_index(g_out_));
+void SizeDistribution::flow_targets(int f, int k, bool psi, bool inward,
+                                    std::vector<FlowTarget>& targets) const {
+  auto slot = [&](int bin) { return psi ? psi_slot(bin) : bin_slot(bin); };
+  targets.clear();
+  targets.push_back({layout_.index(f, slot(k)), 1.0, grid_.area(f)});
+  if (f > 0 && f == snow_face_ && inward) {
+    // spec §6.3, §11 #18: (1 - f_ice) of the flow arrives at (1 - f_ice) m_k over two
+    // bins (psi with the same weights: phi kept), f_ice of it sublimates
+    const double keep = 1.0 - f_ice_;
+    const auto& split = snow_split_[k];
+    targets.push_back(
+        {layout_.index(f - 1, slot(split.lo)), -keep * split.to_lo, grid_.area(f - 1)});
+    if (split.to_hi != 0.0)
+      targets.push_back({layout_.index(f - 1, slot(split.lo + 1)), -keep * split.to_hi,
+                         grid_.area(f - 1)});
+    if (!psi) targets.push_back({layout_.global_index(g_sub_), -f_ice_, mass_unit_});
+  } else if (f > 0) {
+    targets.push_back({layout_.index(f - 1, slot(k)), -1.0, grid_.area(f - 1)});
+  }
+  if (psi) return;  // the volume measure is not booked
+  if (f == 0) targets.push_back({layout_.global_index(g_out_), -1.0, mass_unit_});
   if (!monitor_slot_.empty() && monitor_slot_[f] >= 0)
-    rows.push_back(layout_.global_index(monitor_slot_[f]));
+    targets.push_back({layout_.global_index(monitor_slot_[f]), -1.0, mass_unit_});
 }
 
 void SizeDistribution::declare_pattern(PatternBuilder& p) const {
   const int n = grid_.n_cells(), nb = n_bins_;
-  std::vector<long> rows;
+  std::vector<FlowTarget> targets;
   for (int f = 0; f < n; ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
     for (int k = 0; k < nb; ++k) {
@@ -237,11 +296,14 @@ void SizeDistribution::declare_pattern(PatternBuilder& p) const {
       }
       if (gas_.evolves())
         for (int c : {a, b}) cols.push_back(layout_.index(c, gas_.slot));
-      for (int q = 0; q < static_cast<int>(slots.size()); ++q) {
-        flow_rows(f, k, q == 1, rows);
-        for (long row : rows)
-          for (long col : cols) p.add(row, col);
-      }
+      // the snow face: either way the flow may go (it may turn)
+      for (int q = 0; q < static_cast<int>(slots.size()); ++q)
+        for (bool inward : {false, true}) {
+          if (inward && f != snow_face_) continue;
+          flow_targets(f, k, q == 1, inward, targets);
+          for (const FlowTarget& t : targets)
+            for (long col : cols) p.add(t.row, col);
+        }
     }
   }
   if (!opt_.coagulation) return;
@@ -252,18 +314,11 @@ void SizeDistribution::declare_pattern(PatternBuilder& p) const {
         p.add(layout_.index(i, slot0_ + r), layout_.index(i, slot0_ + c));
 }
 
-void SizeDistribution::flow_rows(int f, int k, bool psi, std::vector<long>& rows) const {
-  if (!psi) return face_rows(f, k, rows);
-  rows.clear();  // the volume measure is not booked: the two cells only
-  rows.push_back(layout_.index(f, psi_slot(k)));
-  if (f > 0) rows.push_back(layout_.index(f - 1, psi_slot(k)));
-}
-
 void SizeDistribution::add_transport(std::span<const double> y,
                                      std::span<double> ydot) const {
   if (porous_) update_porous(y, opt_.coagulation, false);
   const int n = grid_.n_cells(), nb = n_bins_;
-  std::vector<long> rows;
+  std::vector<FlowTarget> targets;
   for (int f = 0; f < n; ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
     const auto [sg_a, sg_b] = face_gas(f, y);
@@ -272,18 +327,17 @@ void SizeDistribution::add_transport(std::span<const double> y,
       const std::size_t kb = static_cast<std::size_t>(b) * nb + k;
       const auto face =
           flux_.face_terms(f, DustFaceFlux::face_stokes(f, st_[ka], st_[kb]), sg_a, sg_b);
-      // sigma_k, then (porous) psi_k with the same face terms: its tracer moment
+      // sigma_k, then (porous) psi_k with the same face terms: its tracer moment, which
+      // goes where sigma_k's flow goes
+      bool inward = false;
       for (int q = 0; q < (porous_ ? 2 : 1); ++q) {
         const int slot = q == 0 ? bin_slot(k) : psi_slot(k);
         const double q_far = face.far >= 0 ? y[layout_.index(face.far, slot)] : 0.0;
         const double flow = flux_.flow(f, face, sg_a, sg_b, y[layout_.index(a, slot)],
                                        y[layout_.index(b, slot)], q_far, nullptr);
-        ydot[layout_.index(f, slot)] += flow / grid_.area(f);
-        if (f > 0) ydot[layout_.index(f - 1, slot)] -= flow / grid_.area(f - 1);
-        if (q == 1) continue;
-        face_rows(f, k, rows);
-        for (std::size_t r = f > 0 ? 2 : 1; r < rows.size(); ++r)
-          ydot[rows[r]] -= flow / mass_unit_;  // the booked masses (outflow < 0 books +)
+        if (q == 0) inward = flow < 0.0;
+        flow_targets(f, k, q == 1, inward, targets);
+        for (const FlowTarget& t : targets) ydot[t.row] += t.weight * flow / t.divisor;
       }
     }
   }
@@ -309,7 +363,7 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
                                     JacobianValues& jac) const {
   if (porous_) update_porous(y, opt_.coagulation, true);
   const int n = grid_.n_cells(), nb = n_bins_;
-  std::vector<long> rows;
+  std::vector<FlowTarget> targets;
   for (int f = 0; f < n; ++f) {
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
     const auto [sg_a, sg_b] = face_gas(f, y);
@@ -331,6 +385,7 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
                              DustFaceFlux::face_stokes(f, ad_seed<ADCell>(st_[ka], 0),
                                                        ad_seed<ADCell>(st_[kb], 1)),
                              ADCell(sg_a), ADCell(sg_b));
+      bool inward = false;
       for (int q = 0; q < (porous_ ? 2 : 1); ++q) {
         const int slot = q == 0 ? bin_slot(k) : psi_slot(k);
         const long col_a = layout_.index(a, slot), col_b = layout_.index(b, slot);
@@ -348,18 +403,14 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
           d_st[0] = flow_st.derivatives()[0];
           d_st[1] = flow_st.derivatives()[1];
         }
-        flow_rows(f, k, q == 1, rows);
-        for (std::size_t r = 0; r < rows.size(); ++r) {
-          // the cell right of the face gains the flow, the one left of it and the
-          // booked masses lose it
-          const double scale = r == 0            ? 1.0 / grid_.area(f)
-                               : f > 0 && r == 1 ? -1.0 / grid_.area(f - 1)
-                                                 : -1.0 / mass_unit_;
+        if (q == 0) inward = flow.value() < 0.0;
+        flow_targets(f, k, q == 1, inward, targets);
+        for (const FlowTarget& t : targets) {
+          const double scale = t.weight / t.divisor;
           for (int j = 0; j < (ev ? 4 : 2); ++j)
             if (flow.derivatives()[j] != 0.0)
-              jac.add(rows[r], cols[j], scale * flow.derivatives()[j]);
-          if (d_far != 0.0)
-            jac.add(rows[r], layout_.index(face.far, slot), scale * d_far);
+              jac.add(t.row, cols[j], scale * flow.derivatives()[j]);
+          if (d_far != 0.0) jac.add(t.row, layout_.index(face.far, slot), scale * d_far);
           for (int side = 0; side < 2; ++side) {
             // St of the cell by ln u = ln psi - ln sigma
             const int c = side == 0 ? a : b;
@@ -367,9 +418,8 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
             if (d_st[side] == 0.0 || g == 0.0) continue;
             const double sig = y[layout_.index(c, bin_slot(k))];
             const double psi = y[layout_.index(c, psi_slot(k))];
-            jac.add(rows[r], layout_.index(c, bin_slot(k)),
-                    -scale * d_st[side] * g / sig);
-            jac.add(rows[r], layout_.index(c, psi_slot(k)), scale * d_st[side] * g / psi);
+            jac.add(t.row, layout_.index(c, bin_slot(k)), -scale * d_st[side] * g / sig);
+            jac.add(t.row, layout_.index(c, psi_slot(k)), scale * d_st[side] * g / psi);
           }
         }
       }
@@ -412,10 +462,9 @@ std::vector<double> SizeDistribution::mass_flow(std::span<const double> y) const
 }
 
 std::vector<BudgetTerm> SizeDistribution::budget_terms() const {
-  // no snow line in the distribution mode yet: m_sublimated kept, as 0, so that the
-  // budget reads as the single-size model's
-  return outflow_budget_terms([this](std::span<const double> y) { return mass_out(y); },
-                              [](std::span<const double>) { return 0.0; });
+  return outflow_budget_terms(
+      [this](std::span<const double> y) { return mass_out(y); },
+      [this](std::span<const double> y) { return mass_sublimated(y); });
 }
 
 std::vector<OutputField> SizeDistribution::output_fields() const {

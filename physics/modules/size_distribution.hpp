@@ -29,8 +29,18 @@
 //! St (d St/d ln u by the same forward difference); the compaction floors' dependence on
 //! u through St is held fixed.
 //!
-//! Not carried yet (refused by src/model/scene_validation.cpp): the snow line,
-//! planetesimals per bin, erosion and bouncing.
+//! Snow line (spec §1.7, §6.3, §15.4; set_snowline()): every cell coagulates with its
+//! own monomer species (silicate inside r_snow, ice outside, as the single-size model),
+//! on one mass grid for all cells. The mass of bin k that crosses the snow face inward
+//! loses f_ice of its mass, m -> (1 - f_ice) m with phi kept (spec §11 #18): the inner
+//! cell receives (1 - f_ice) of the flow at the mass (1 - f_ice) m_k, split between the
+//! two bins around it as a sticking product (MassGrid::split_mass), psi_k with the same
+//! weights; f_ice of the flow is booked in m_sublimated. Outward flows through the face
+//! carry their dust unchanged (no condensation, as DustTransport). The Jacobian of these
+//! flows is the same AD of the face flow, mapped to the rows that receive it.
+//!
+//! Not carried yet (refused by src/model/scene_validation.cpp): planetesimals per bin,
+//! erosion and bouncing.
 #include <span>
 #include <string>
 #include <vector>
@@ -60,15 +70,19 @@ struct SizeDistributionOptions {
 class SizeDistribution : public PhysicsModule, public DustCarrier {
  public:
   //! Registers sigma_0 ... sigma_{N-1} (cell) and m_out_dust (global). `viscous` is null
-  //! for static gas; `species` per cell (one species: no snow line yet); `sigma_scale`
-  //! [g cm^-2] sets CVODE's absolute tolerance scale of every bin; `dust_mass` [g] is
-  //! the unit of the booked masses.
+  //! for static gas; `species` per cell (the monomers each cell coagulates with; the
+  //! mass grid starts at the smallest m0 of them unless options.m_min is set);
+  //! `sigma_scale` [g cm^-2] sets CVODE's absolute tolerance scale of every bin;
+  //! `dust_mass` [g] is the unit of the booked masses.
   SizeDistribution(StateLayout& layout, const Grid& grid, const GasDisk& disk,
                    const GasColumn& gas, const ViscousStencil* viscous,
                    const CellGas& cell_gas, const std::vector<physics::Species>& species,
                    DustTransportOptions transport, SizeDistributionOptions options,
                    double sigma_scale, double dust_mass);
 
+  //! The first bin's mass [g]: options.m_min, or the smallest monomer mass of `species`.
+  static double first_bin_mass(const SizeDistributionOptions& options,
+                               const std::vector<physics::Species>& species);
   const physics::coagulation::MassGrid& mass_grid() const { return engine_.grid(); }
   int n_bins() const { return n_bins_; }
   int bin_slot(int k) const { return slot0_ + k; }
@@ -83,13 +97,17 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! them).
   physics::coagulation::CellCoefficients coefficients(int cell,
                                                       std::span<const double> y) const;
-  //! Radius of every bin [cm] (compact, the species of cell 0).
-  std::vector<double> bin_radii() const;
+  //! Radius of every bin [cm] (compact, the monomer density of `cell`'s species).
+  std::vector<double> bin_radii(int cell = 0) const;
+  //! The bin of `cell`'s monomers: the last at or below their mass m0 (0 when the grid
+  //! starts above it).
+  int monomer_bin(int cell) const;
 
-  //! The initial bins of a cell holding sigma_d [g cm^-2]: MRN, sigma_k ∝ a_k^(1/2) for
-  //! a_k <= a_max_init (n(a) ∝ a^-3.5 per log bin, as DustPy), or all in the first bin;
-  //! porous (bins holds cell_vars()): psi_k = sigma_k, compact aggregates.
-  void initial_cell(double sigma_d, std::span<double> bins) const;
+  //! The initial bins of `cell` holding sigma_d [g cm^-2], from its monomer bin up: MRN,
+  //! sigma_k ∝ a_k^(1/2) for a_k <= a_max_init (n(a) ∝ a^-3.5 per log bin, as DustPy),
+  //! or all in the monomer bin; porous (bins holds cell_vars()): psi_k = sigma_k,
+  //! compact aggregates.
+  void initial_cell(int cell, double sigma_d, std::span<double> bins) const;
   double sigma_d(int cell,
                  std::span<const double> y) const override;  //!< sum of the bins
   //! The mass-dominating bin of the cell: argmax sigma_k (DustPy's a_rep).
@@ -103,12 +121,18 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! global variable in units of mass_unit(); face 0 is m_out_dust. Before set-up ends.
   int add_monitor(StateLayout& layout, int face);
   int m_out_slot() const { return g_out_; }
+  //! Snow line at face `face` (spec §6.3): the dust of every bin crossing it inward
+  //! loses f_ice of its mass, booked in the global variable m_sublimated (registered
+  //! here, before set-up ends).
+  void set_snowline(StateLayout& layout, int face, double f_ice);
+  int sublimated_slot() const { return g_sub_; }            //!< -1 without a snow line
+  double mass_sublimated(std::span<const double> y) const;  //!< at the snow line [g]
   double mass_unit() const override { return mass_unit_; }
   double mass_out(std::span<const double> y) const;  //!< through r_in [g]
   std::vector<double> mass_flow(std::span<const double> y) const override;
 
   std::string_view name() const override { return "size_distribution"; }
-  //! m_out_inner and m_sublimated (0: no snow line yet) [g].
+  //! m_out_inner and m_sublimated (0 without a snow line) [g].
   std::vector<BudgetTerm> budget_terms() const override;
   //! sigma (r, m), sigma_d, the mass-dominating bin's m and a, mdot_d.
   std::vector<OutputField> output_fields() const override;
@@ -133,10 +157,22 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   void update_porous(std::span<const double> y, bool coefficients,
                      bool derivatives) const;
 
-  //! The rows a face flow of bin k feeds: the two cells, m_out_dust (f = 0), a monitor.
-  void face_rows(int f, int k, std::vector<long>& rows) const;
-  //! The rows of bin k's flow of sigma_k (face_rows) or (psi) of psi_k through face f.
-  void flow_rows(int f, int k, bool psi, std::vector<long>& rows) const;
+  //! A row that the flow through a face feeds: ydot[row] += weight * flow / divisor.
+  struct FlowTarget {
+    long row;
+    double weight, divisor;
+  };
+  //! Where the flow of bin k's sigma_k (or with `psi` its psi_k) through face f goes:
+  //! the cell right of the face gains it, the cell left of it and the booked masses
+  //! (m_out_dust at f = 0, a monitor; not for psi) lose it (an outflow, < 0, books +).
+  //! `inward` (sigma_k's flow < 0) through the snow face: the inner cell receives
+  //! (1 - f_ice) of it over the two bins of (1 - f_ice) m_k, m_sublimated the rest.
+  void flow_targets(int f, int k, bool psi, bool inward,
+                    std::vector<FlowTarget>& targets) const;
+  //! A new global variable booking a dust mass in units of mass_unit() (DustTransport's
+  //! add_booked_mass); before set-up ends.
+  int add_booked_mass(StateLayout& layout, const std::string& name,
+                      const std::string& what) const;
   //! The Sigma_g of the cells of face f's stencil at state y.
   std::pair<double, double> face_gas(int f, std::span<const double> y) const;
 
@@ -152,6 +188,10 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   int n_bins_ = 0, slot0_ = -1, g_out_ = -1;
   double mass_unit_ = 1.0;
   std::vector<int> monitor_slot_;  //!< per face: global slot of its booking, or -1
+  int snow_face_ = -1, g_sub_ = -1;
+  double f_ice_ = 0.0;
+  //! per bin k: the two bins of (1 - f_ice) m_k (MassGrid::split_mass)
+  std::vector<physics::coagulation::MassGrid::MassSplit> snow_split_;
   // per cell: the coagulation coefficients and the bins' St (refresh())
   mutable std::vector<physics::coagulation::CellCoefficients> coef_;
   mutable std::vector<double> st_;  //!< [cell * N + k]

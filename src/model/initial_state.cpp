@@ -78,7 +78,7 @@ std::vector<double> Simulation::initial_state() const {
   for (int i = 0; i < grid_.n_cells(); ++i) {
     if (distribution_)  // spread over the mass bins (spec §15.4)
       distribution_->initial_cell(
-          sigma_d0_[i],
+          i, sigma_d0_[i],
           std::span<double>(y).subspan(L.index(i, distribution_->bin_slot(0)),
                                        distribution_->cell_vars()));
     else

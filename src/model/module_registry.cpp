@@ -34,18 +34,24 @@ std::unique_ptr<PhysicsModule> build_dust_transport(ModuleContext& c) {
   return transport;
 }
 
+// The snow line face: the first face with silicate inside and ice outside (spec §6.3),
+// or -1.
+int snow_line_face(const ModuleContext& c) {
+  for (int f = 1; f < c.grid.n_cells(); ++f)
+    if (c.inside_snow_line[f - 1] && !c.inside_snow_line[f]) return f;
+  return -1;
+}
+
 // The monitors and the snow line book global variables after every module's own.
 void finish_dust_transport(ModuleContext& c) {
   // pebble-flux monitors (spec §8); r_in is booked as m_out_dust already
   for (PebbleMonitor& mon : c.monitors)
     mon.global_slot = mon.face > 0 ? c.transport->add_monitor(c.layout, mon.face)
                                    : c.transport->m_out_slot();
-  // The snow line face: the first face with silicate inside and ice outside (spec §6.3).
-  const int n = c.grid.n_cells();
-  for (int f = 1; f < n; ++f)
-    if (c.inside_snow_line[f - 1] && !c.inside_snow_line[f])
-      c.transport->set_snowline(c.layout, f, c.cfg.real("snowline.f_ice"),
-                                c.growth ? c.codec.qm_slot : -1);
+  const int f = snow_line_face(c);
+  if (f > 0)
+    c.transport->set_snowline(c.layout, f, c.cfg.real("snowline.f_ice"),
+                              c.growth ? c.codec.qm_slot : -1);
 }
 
 // The porous growth model (spec §4-§6.2): owns Q_m and Q_phi, which ride with the dust.
@@ -87,11 +93,11 @@ std::unique_ptr<PhysicsModule> build_size_distribution(ModuleContext& c) {
   o.mrn = cfg.str("model.init") == "mrn";
   o.a_max_init = cfg.real("model.a_max_init_um") * 1e-4;
   o.growth = growth_options_from_config(cfg);
-  const double m_first = o.m_min > 0.0 ? o.m_min : c.species[0].m0;
+  const double m_first = SizeDistribution::first_bin_mass(o, c.species);
   if (m_first >= o.m_max)
-    cfg.fail("model.m_max_g", "= " + num(o.m_max) + " [g] must exceed the first bin, " +
-                                  num(m_first) +
-                                  " g (model.m_min_g, or the monomer mass); raise it");
+    cfg.fail("model.m_max_g",
+             "= " + num(o.m_max) + " [g] must exceed the first bin, " + num(m_first) +
+                 " g (model.m_min_g, or the smallest monomer mass); raise it");
   auto dist = std::make_unique<SizeDistribution>(
       c.layout, c.grid, c.disk, c.gas, c.viscous ? &c.viscous->stencil() : nullptr,
       c.cell_gas, c.species, transport_options_from_config(cfg), o, c.sigma_d_max,
@@ -100,10 +106,13 @@ std::unique_ptr<PhysicsModule> build_size_distribution(ModuleContext& c) {
   return dist;
 }
 
-// The pebble-flux monitors book global variables after every module's own.
+// The pebble-flux monitors and the snow line (spec §6.3, §15.4) book global variables
+// after every module's own, in the order of the single-size model's.
 void finish_size_distribution(ModuleContext& c) {
   for (PebbleMonitor& mon : c.monitors)
     mon.global_slot = c.distribution->add_monitor(c.layout, mon.face);
+  const int f = snow_line_face(c);
+  if (f > 0) c.distribution->set_snowline(c.layout, f, c.cfg.real("snowline.f_ice"));
 }
 
 // NEW_MODULE: one line here (build order = state layout order; a new process goes last).

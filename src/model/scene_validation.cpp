@@ -73,12 +73,7 @@ void validate_distribution(const Config& cfg) {
   if (cfg.str("model.kind") != "distribution") return;
   const std::string not_yet =
       " is not supported with model.kind = \"distribution\" yet (issue 35: the size "
-      "distribution has no snow line, planetesimals, erosion or bouncing); ";
-  if (cfg.flag("snowline.enabled"))
-    cfg.fail("snowline.enabled", "= true (its default)" + not_yet +
-                                     "set snowline.enabled = false (one species "
-                                     "everywhere, the ice material) or model.kind = "
-                                     "\"single_size\"");
+      "distribution has no planetesimals, erosion or bouncing); ";
   if (cfg.flag("planetesimals.coagulation") || cfg.str("planetesimals.si") != "none")
     cfg.fail(cfg.flag("planetesimals.coagulation") ? "planetesimals.coagulation"
                                                    : "planetesimals.si",

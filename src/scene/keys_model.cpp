@@ -11,13 +11,12 @@ UsedWhen distribution() { return one_of("model.kind", {"distribution"}); }
 // [model] spec §15: one particle per cell, or the whole size distribution
 std::vector<KeySpec> model_keys() {
   return {
-      choice(
-          "model.kind", "single_size", {"single_size", "distribution"},
-          "single_size = the mass-dominating particle of each cell (spec §2-§7); "
-          "distribution = the size distribution of each cell on a log-spaced mass "
-          "grid, coagulated by the Smoluchowski equation and every bin transported "
-          "with its own St (spec §15; compact or porous; no snow line, no planetesimals, "
-          "no erosion or bouncing yet: params/README.md)"),
+      choice("model.kind", "single_size", {"single_size", "distribution"},
+             "single_size = the mass-dominating particle of each cell (spec §2-§7); "
+             "distribution = the size distribution of each cell on a log-spaced mass "
+             "grid, coagulated by the Smoluchowski equation and every bin transported "
+             "with its own St (spec §15; compact or porous, with the snow line; no "
+             "planetesimals, no erosion or bouncing yet: params/README.md)"),
       // > 1/log10(2) = 3.32: the two-bin split of a sticking pair needs a bin ratio
       // below 2 (physics/coagulation/mass_grid.hpp)
       when({distribution()},
@@ -26,8 +25,8 @@ std::vector<KeySpec> model_keys() {
                 3.33, false, 100.0, false)),
       when({distribution()},
            real("model.m_min_g", "0.0", "g",
-                "distribution: mass of the first bin; 0 = the monomer mass of the "
-                "species (material.a0_um and its rho0)",
+                "distribution: mass of the first bin; 0 = the smallest monomer mass of "
+                "the species on the grid (material.a0_um and their rho0)",
                 0.0, false)),
       when({distribution()},
            positive("model.m_max_g", "1e5", "g",
@@ -36,8 +35,9 @@ std::vector<KeySpec> model_keys() {
       when({distribution()},
            choice("model.init", "mrn", {"mrn", "monomers"},
                   "distribution: the initial Sigma_d of each cell spread as MRN, n(a) ∝ "
-                  "a^-3.5 from the first bin up to model.a_max_init_um (as DustPy), or "
-                  "all in the first bin (spec §15.4)")),
+                  "a^-3.5 from the bin of its monomers (the first bin when model.m_min_g "
+                  "lies above them) up to model.a_max_init_um (as DustPy), or all in "
+                  "that bin (spec §15.4)")),
       when({distribution(), one_of("model.init", {"mrn"})},
            positive("model.a_max_init_um", "1.0", "um",
                     "distribution, mrn: largest initial radius (DustPy's default 1 um)")),

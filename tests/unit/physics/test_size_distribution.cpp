@@ -61,6 +61,14 @@ TEST(SizeDistribution, JacobianMatchesFiniteDifferencesVanLeer) {
                         "distribution, van Leer, static gas");
 }
 
+// The snow face's flows into the inner cell's bins and m_sublimated, with the silicate
+// species inside (spec §6.3, §15.4).
+TEST(SizeDistribution, JacobianMatchesFiniteDifferencesSnowLine) {
+  expect_jacobian_exact({"snowline.enabled=true"}, "distribution, snow line");
+  expect_jacobian_exact({"snowline.enabled=true", "transport.advection=\"van_leer\""},
+                        "distribution, snow line, van Leer");
+}
+
 // The budget terms' rates cancel (coagulation moves mass between bins only; the transport
 // books what leaves through r_in), and a run keeps the budget to round-off.
 TEST(SizeDistribution, MassBudgetCloses) {
@@ -90,11 +98,13 @@ TEST(SizeDistribution, MassBudgetCloses) {
 // One bin without coagulation is the single-size transport of the same St: the same flux
 // operator, boundaries and booking. A power-law gas disk with Epstein drag gives the bin
 // St ∝ Sigma_g^-1 ∝ r^p, which the single-size scene prescribes as transport.St and
-// St_slope.
-TEST(SizeDistribution, OneBinWithoutGrowthIsTheSingleSizeTransport) {
-  const std::vector<std::string> common{"disk.model=\"powerlaw\"", "disk.p=1.0",
-                                        "gas.evolve=false", "growth.enabled=false",
-                                        "fragmentation.enabled=false"};
+// St_slope. `sets` go to both scenes; with the snow line the budgets' m_sublimated are
+// compared too.
+void expect_one_bin_is_single_size(const std::vector<std::string>& sets) {
+  std::vector<std::string> common{"disk.model=\"powerlaw\"", "disk.p=1.0",
+                                  "gas.evolve=false", "growth.enabled=false",
+                                  "fragmentation.enabled=false"};
+  common.insert(common.end(), sets.begin(), sets.end());
   std::vector<std::string> dist_sets = common;
   for (const char* s : {"growth.drag_law=\"epstein\"", "model.init=\"monomers\"",
                         "model.m_min_g=100.0", "model.m_max_g=1000.0"})
@@ -127,6 +137,14 @@ TEST(SizeDistribution, OneBinWithoutGrowthIsTheSingleSizeTransport) {
   std::printf("d sigma/dt: max |distribution - single size| / max |single| = %.1e\n",
               diff / scale);
   EXPECT_LT(diff, 1e-12 * scale);
+  // the booked masses, in grams per second (each run's unit is its initial dust mass)
+  const auto rates_d = dist.budget_masses(fd), rates_s = single.budget_masses(fs);
+  ASSERT_EQ(rates_d.size(), rates_s.size());
+  for (std::size_t t = 0; t < rates_d.size(); ++t)
+    if (dist.budget_terms()[t].name != "m_dust") {
+      EXPECT_NEAR(rates_d[t], rates_s[t], 1e-12 * std::abs(rates_s[t]))
+          << dist.budget_terms()[t].name;
+    }
 
   // and integrated: 3 000 yr, the profiles and the mass through r_in
   const auto yd = evolved_state(dist, 3000.0), ys = evolved_state(single, 3000.0);
@@ -142,11 +160,27 @@ TEST(SizeDistribution, OneBinWithoutGrowthIsTheSingleSizeTransport) {
   EXPECT_LT(worst, 1e-5 * peak);
   EXPECT_GT(out_s, 0.0);
   EXPECT_NEAR(out_d / out_s, 1.0, 1e-5);
+  const double sub_d = dist.distribution()->mass_sublimated(yd);
+  const double sub_s = single.transport().mass_sublimated(ys);
+  std::printf("m_sublimated %.6e vs %.6e\n", sub_d, sub_s);
+  EXPECT_NEAR(sub_d, sub_s, 1e-5 * std::abs(sub_s));
+}
+
+TEST(SizeDistribution, OneBinWithoutGrowthIsTheSingleSizeTransport) {
+  expect_one_bin_is_single_size({});
+}
+
+// The same at the snow line (spec §6.3): the ice of the one bin sublimates as the
+// single-size model's Sigma_d does. The bin's mass 100 g lies at the bottom of the grid,
+// so its (1 - f_ice) m stays in it (MassGrid::split_mass): one bin still. The silicates
+// take the ice's density so that the bin's St is the prescribed power law across it.
+TEST(SizeDistribution, OneBinAtTheSnowLineIsTheSingleSizeTransport) {
+  expect_one_bin_is_single_size({"snowline.enabled=true", "material.sil_rho0=1.67"});
 }
 
 TEST(SizeDistribution, RefusesWhatItDoesNotCarryYet) {
+  EXPECT_NO_THROW(validate_scene(small_scene({"snowline.enabled=true"})));
   for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
-           {"snowline.enabled=true", "snowline.enabled"},
            {"planetesimals.si=\"d16\"", "planetesimals.si"},
            {"erosion.model=\"halt\"", "erosion.model"},
            {"bouncing.enabled=true", "bouncing.enabled"}}) {

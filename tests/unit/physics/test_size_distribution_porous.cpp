@@ -151,9 +151,9 @@ TEST(SizeDistributionPorous, CoagulationConservesMassAndBooksTheVolume) {
 // with St(phi), the viscous gas. Measured: row-scaled error 2.2e-5, entry error 1.9e-3,
 // both in the coagulation blocks: the coefficients' derivatives by ln u are forward
 // differences of 1e-6 (cell_coefficients); the floors' ln phi_floor(St(u)) and
-// relaxation rate are held fixed.
-TEST(SizeDistributionPorous, JacobianMatchesFiniteDifferences) {
-  Simulation sim(porous_scene());
+// relaxation rate are held fixed. `sets` change the scene.
+void expect_porous_jacobian(const std::vector<std::string>& sets) {
+  Simulation sim(porous_scene(sets));
   const auto& L = sim.model().layout();
   const int nb = sim.distribution()->n_bins();
   std::mt19937 rng(5);
@@ -172,6 +172,16 @@ TEST(SizeDistributionPorous, JacobianMatchesFiniteDifferences) {
   EXPECT_EQ(c.outside_pattern, 0);
   // the dense 2N x 2N coagulation blocks are there
   EXPECT_GT(c.nnz_fd, 12 * (2 * nb) * (2 * nb) / 2);
+}
+
+TEST(SizeDistributionPorous, JacobianMatchesFiniteDifferences) {
+  expect_porous_jacobian({});
+}
+
+// With the snow line: psi_k follows sigma_k over the two bins of (1 - f_ice) m_k, and
+// the silicate cell's coefficients (spec §6.3, §15.4).
+TEST(SizeDistributionPorous, JacobianMatchesFiniteDifferencesSnowLine) {
+  expect_porous_jacobian({"snowline.enabled=true"});
 }
 
 // A run from compact MRN dust: Newton converges with this Jacobian, the mass budget
