@@ -13,7 +13,8 @@
 //!     Sdot = zeta Sigma_d Omega_K, zeta = 0.01.
 //! Every threshold is a smooth step (log_step: logistic in ln x over +-width_dex) so
 //! CVODE's Newton iteration sees no kink (spec §6.4). The grid module that applies them
-//! to every cell and books Sigma_pl: physics/modules/planetesimals.hpp.
+//! to every cell and books Sigma_pl: physics/modules/planetesimals.hpp; to every mass
+//! bin of the size distribution (spec §15.4): physics/modules/bin_planetesimals.hpp.
 #include <cmath>
 
 #include "disk/local_gas.hpp"
@@ -44,6 +45,15 @@ T zcrit_lim25(const T& st) {
   return exp(ln10 * log10_z);
 }
 
+//! The St part of direct coagulation (spec §7.1): Sigma_d / tau_pl W(St/St_pl), tau_pl =
+//! tau_pl_omega / Omega_K. Linear in sigma_d.
+template <class T>
+T conversion_above_st_pl(const T& sigma_d, const T& st, double omega_k,
+                         double tau_pl_omega, double st_pl, double width_dex) {
+  const double tau_pl = tau_pl_omega / omega_k;
+  return sigma_d / tau_pl * log_step(st, st_pl, width_dex);
+}
+
 //! Direct coagulation (spec §7.1): Sigma_d / tau_pl W(St/St_pl) I(dm/dt > 0), tau_pl =
 //! tau_pl_omega / Omega_K. dm/dt > 0 smoothly: on while the particle e-folds its mass
 //! within 1e9 / Omega_K (a particle held by erosion or fragmentation grows far slower
@@ -51,9 +61,10 @@ T zcrit_lim25(const T& st) {
 template <class T>
 T coagulation_conversion(const T& sigma_d, const T& st, const T& dlnm_dt, double omega_k,
                          double tau_pl_omega, double st_pl, double width_dex) {
-  const double tau_pl = tau_pl_omega / omega_k;
   const T growing = tanh_step<T>(1e9 / omega_k * dlnm_dt);
-  return sigma_d / tau_pl * log_step(st, st_pl, width_dex) * growing;
+  const T above =
+      conversion_above_st_pl(sigma_d, st, omega_k, tau_pl_omega, st_pl, width_dex);
+  return above * growing;
 }
 
 //! The streaming instability's midplane trigger (spec §7.2): rho_d/rho_g >= eps_crit,

@@ -13,32 +13,12 @@ Planetesimals::Planetesimals(StateLayout& layout, const ParticleCodec& codec,
                              const physics::GrowthOptions& growth,
                              PlanetesimalOptions options, double sigma_scale)
     : CellRangeForm(layout),
+      PlanetesimalChannels(layout, options, sigma_scale),
       codec_(codec),
       gas_(gas),
       stokes_(stokes),
       species_(species),
-      growth_(growth),
-      opt_(options) {
-  // Sigma_pl only books what the channels convert (no right-hand side reads it back): a
-  // quadrature, left out of CVODE's error test (VarInfo::error_test): its error feeds
-  // nothing back, and in the test it only costs steps, while the outcomes move no more
-  // than a change of round-off moves them and the dust budget closes to round-off
-  // (tests/bench/results/performance_log.md). Nor does it carry CVODE's non-negativity
-  // constraint: with no error weight, CVODE would clip any negative excursion to zero
-  // without limit (its constraint correction is accepted when small in the weighted
-  // norm), and each clip loses mass from the budget. Sigma_pl dips below zero only
-  // where Sigma_d itself sits within its tolerance of zero.
-  if (opt_.coagulation)
-    coag_slot_ =
-        layout.add_cell_var({"sigma_pl_coag", "g cm^-2",
-                             "planetesimals formed by direct coagulation (spec §7.1)",
-                             sigma_scale, false, false});
-  if (opt_.si != StreamingInstability::kNone)
-    si_slot_ = layout.add_cell_var({"sigma_pl_si", "g cm^-2",
-                                    "planetesimals formed by the streaming instability "
-                                    "(spec §7.2)",
-                                    sigma_scale, false, false});
-}
+      growth_(growth) {}
 
 template <class T>
 void Planetesimals::cell_rates(int cell, const T* yc, T& coag, T& si) const {
@@ -112,35 +92,6 @@ std::pair<double, double> Planetesimals::rates(int cell,
   double coag = 0.0, si = 0.0;
   cell_rates(cell, &y[layout_.index(cell, 0)], coag, si);
   return {coag, si};
-}
-
-std::vector<OutputField> Planetesimals::output_fields() const {
-  const int n = layout_.n_cells();
-  const std::size_t cells = static_cast<std::size_t>(n);
-  // Sigma_pl of the channel in `slot` at every cell centre [g cm^-2]; empty when off
-  const auto sigma = [this, n](std::span<const double> y, int slot) {
-    std::vector<double> out(slot < 0 ? 0 : n);
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = y[layout_.index(int(i), slot)];
-    return out;
-  };
-  std::vector<OutputField> fields{
-      {"sigma_pl", cells, "g cm^-2", "planetesimal surface density, all channels",
-       [this, n, sigma](std::span<const double> y) {
-         const auto c = sigma(y, coag_slot_), s = sigma(y, si_slot_);
-         std::vector<double> total(n, 0.0);
-         for (int i = 0; i < n; ++i)
-           total[i] = (c.empty() ? 0.0 : c[i]) + (s.empty() ? 0.0 : s[i]);
-         return total;
-       }}};
-  if (coag_slot_ >= 0)
-    fields.push_back(
-        {"sigma_pl_coag", cells, "g cm^-2", "planetesimals by direct coagulation",
-         [this, sigma](std::span<const double> y) { return sigma(y, coag_slot_); }});
-  if (si_slot_ >= 0)
-    fields.push_back(
-        {"sigma_pl_si", cells, "g cm^-2", "planetesimals by streaming instability",
-         [this, sigma](std::span<const double> y) { return sigma(y, si_slot_); }});
-  return fields;
 }
 
 }  // namespace panoptic

@@ -3,28 +3,14 @@
 //! planetesimals, which are not transported, by direct coagulation and one streaming
 //! instability criterion (the laws: physics/planetesimal_criteria.hpp). The sinks
 //! conserve the particle properties: dSigma_d = -Sdot, dQ = -(Q/Sigma_d) Sdot (spec
-//! §6.2). Owns one Sigma_pl variable per channel that is on.
+//! §6.2). Owns one Sigma_pl variable per channel that is on (PlanetesimalChannels).
 #include "physics/modules/cell_range_form.hpp"
+#include "physics/modules/planetesimal_channels.hpp"
 #include "physics/modules/porous_growth.hpp"
 
 namespace panoptic {
 
-//! The streaming-instability criterion (physics/planetesimal_criteria.hpp; d16 the
-//! default).
-enum class StreamingInstability { kNone, kD16, kS18, kZcrit };
-
-struct PlanetesimalOptions {
-  bool coagulation = true;     //!< direct coagulation channel (spec §7.1)
-  double st_pl = 10.0;         //!< St threshold of direct coagulation
-  double tau_pl_omega = 10.0;  //!< tau_pl Omega_K
-  StreamingInstability si = StreamingInstability::kD16;
-  double zeta = 0.01;       //!< SI efficiency (d16: 0.01, s18: 0.1)
-  double st_si_min = 0.01;  //!< d16: smallest St that counts
-  double eps_crit = 1.0;    //!< midplane rho_d/rho_g that triggers SI
-  double width_dex = 0.1;   //!< half width of the smooth thresholds [dex]
-};
-
-class Planetesimals : public CellRangeForm<Planetesimals> {
+class Planetesimals : public CellRangeForm<Planetesimals>, public PlanetesimalChannels {
  public:
   //! Registers sigma_pl_coag and/or sigma_pl_si.
   Planetesimals(StateLayout& layout, const ParticleCodec& codec, const CellGas& gas,
@@ -45,11 +31,10 @@ class Planetesimals : public CellRangeForm<Planetesimals> {
   void use_growth_rates(const PorousGrowth* growth) { growth_module_ = growth; }
 
   //! sigma_pl and that of each channel that is on.
-  std::vector<OutputField> output_fields() const override;
-  int coag_slot() const { return coag_slot_; }  //!< -1 when the channel is off
-  int si_slot() const { return si_slot_; }      //!< -1 when the channel is off
-  //! Conversion rates of cell `cell` at state y [g cm^-2 s^-1]: {coagulation, SI}.
-  std::pair<double, double> rates(int cell, std::span<const double> y) const;
+  std::vector<OutputField> output_fields() const override {
+    return channel_fields(layout_);
+  }
+  std::pair<double, double> rates(int cell, std::span<const double> y) const override;
 
  private:
   template <class T>
@@ -67,8 +52,6 @@ class Planetesimals : public CellRangeForm<Planetesimals> {
   const StokesModel& stokes_;
   const std::vector<physics::Species>& species_;
   physics::GrowthOptions growth_;
-  PlanetesimalOptions opt_;
-  int coag_slot_ = -1, si_slot_ = -1;
   const PorousGrowth* growth_module_ = nullptr;
 };
 

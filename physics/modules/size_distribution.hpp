@@ -39,8 +39,8 @@
 //! carry their dust unchanged (no condensation, as DustTransport). The Jacobian of these
 //! flows is the same AD of the face flow, mapped to the rows that receive it.
 //!
-//! Not carried yet (refused by src/model/scene_validation.cpp): planetesimals per bin,
-//! erosion and bouncing.
+//! Planetesimal formation per bin: physics/modules/bin_planetesimals.hpp. Not carried yet
+//! (refused by src/model/scene_validation.cpp): erosion and bouncing.
 #include <span>
 #include <string>
 #include <vector>
@@ -48,6 +48,7 @@
 #include "disk/gas_column.hpp"
 #include "physics/coagulation/cell_coefficients.hpp"
 #include "physics/coagulation/smoluchowski.hpp"
+#include "physics/drag.hpp"
 #include "physics/growth_options.hpp"
 #include "physics/modules/dust_face_flux.hpp"
 #include "src/solver/physics_module.hpp"
@@ -97,6 +98,17 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! them).
   physics::coagulation::CellCoefficients coefficients(int cell,
                                                       std::span<const double> y) const;
+  //! The gas of `cell` that the bins' St are taken with: that of the last refresh().
+  const physics::LocalGas& bin_gas(int cell) const { return gas_now_[cell]; }
+  //! St of bin k of `cell` with filling factor phi, as the transport and the
+  //! coagulation take it (spec §15.1): compact, the cached St (phi = 1); porous, the drag
+  //! law at the bin's radius (T: double, or AutoDiff for the derivatives by phi).
+  template <class T>
+  T bin_stokes(int cell, int k, const T& phi) const {
+    if (!porous_) return T(st_[static_cast<std::size_t>(cell) * n_bins_ + k]);
+    return physics::stokes_number(T(engine_.grid().m[k]), phi, species_[cell].rho0,
+                                  gas_now_[cell], opt_.growth.drag);
+  }
   //! Radius of every bin [cm] (compact, the monomer density of `cell`'s species).
   std::vector<double> bin_radii(int cell = 0) const;
   //! The bin of `cell`'s monomers: the last at or below their mass m0 (0 when the grid

@@ -4,6 +4,7 @@
 #include <array>
 
 #include "disk/viscous_gas.hpp"
+#include "physics/modules/bin_planetesimals.hpp"
 #include "physics/modules/dust_transport.hpp"
 #include "physics/modules/planetesimals.hpp"
 #include "physics/modules/porous_growth.hpp"
@@ -115,10 +116,23 @@ void finish_size_distribution(ModuleContext& c) {
   if (f > 0) c.distribution->set_snowline(c.layout, f, c.cfg.real("snowline.f_ice"));
 }
 
+bool planetesimals_on(const Config& cfg) {
+  return cfg.flag("planetesimals.coagulation") || cfg.str("planetesimals.si") != "none";
+}
+
+// Planetesimal channels per mass bin of the size distribution (spec §15.4), after it.
+std::unique_ptr<PhysicsModule> build_bin_planetesimals(ModuleContext& c) {
+  auto pl = std::make_unique<BinPlanetesimals>(c.layout, *c.distribution,
+                                               planetesimal_options_from_config(c.cfg),
+                                               c.sigma_d_max, c.codec.eps_sigma);
+  c.planetesimals = pl.get();
+  return pl;
+}
+
 // NEW_MODULE: one line here (build order = state layout order; a new process goes last).
 // The evaluation ranks keep the order in which the right-hand sides are summed (the
 // transport last): another order changes the last bits of every run.
-constexpr std::array<ModuleEntry, 5> kRegistry{{
+constexpr std::array<ModuleEntry, 6> kRegistry{{
     {"viscous_gas", [](const Config& cfg) { return cfg.flag("gas.evolve"); },
      build_viscous_gas, nullptr, 0},
     {"dust_transport", single_size, build_dust_transport, finish_dust_transport, 3},
@@ -126,13 +140,13 @@ constexpr std::array<ModuleEntry, 5> kRegistry{{
      [](const Config& cfg) { return single_size(cfg) && cfg.flag("growth.enabled"); },
      build_porous_growth, nullptr, 1},
     {"planetesimals",
-     [](const Config& cfg) {
-       return cfg.flag("planetesimals.coagulation") ||
-              cfg.str("planetesimals.si") != "none";
-     },
+     [](const Config& cfg) { return single_size(cfg) && planetesimals_on(cfg); },
      build_planetesimals, nullptr, 2},
     {"size_distribution", [](const Config& cfg) { return !single_size(cfg); },
      build_size_distribution, finish_size_distribution, 3},
+    {"bin_planetesimals",
+     [](const Config& cfg) { return !single_size(cfg) && planetesimals_on(cfg); },
+     build_bin_planetesimals, nullptr, 2},
 }};
 
 }  // namespace

@@ -25,7 +25,7 @@ struct ParticleCodec;
 class ViscousGas;
 class DustTransport;
 class PorousGrowth;
-class Planetesimals;
+class PlanetesimalChannels;
 class SizeDistribution;
 namespace physics {
 struct Species;
@@ -56,7 +56,7 @@ struct ModuleContext {
   ViscousGas* viscous = nullptr;
   DustTransport* transport = nullptr;
   PorousGrowth* growth = nullptr;
-  Planetesimals* planetesimals = nullptr;
+  PlanetesimalChannels* planetesimals = nullptr;  //!< single-size or per bin
   SizeDistribution* distribution = nullptr;
 };
 

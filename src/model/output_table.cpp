@@ -24,9 +24,14 @@ Config every_process_scene() {
 }
 
 Config distribution_scene() {
-  const std::vector<std::string> on{"model.kind=distribution", "grid.n_cells=16",
-                                    "gas.evolve=true",         "growth.enabled=true",
-                                    "porosity.enabled=false",  "snowline.enabled=false"};
+  const std::vector<std::string> on{"model.kind=distribution",
+                                    "grid.n_cells=16",
+                                    "gas.evolve=true",
+                                    "growth.enabled=true",
+                                    "porosity.enabled=false",
+                                    "snowline.enabled=false",
+                                    "planetesimals.coagulation=true",
+                                    "planetesimals.si=d16"};
   return load_scene_text("", "size distribution", on);
 }
 

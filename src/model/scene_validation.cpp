@@ -73,12 +73,14 @@ void validate_distribution(const Config& cfg) {
   if (cfg.str("model.kind") != "distribution") return;
   const std::string not_yet =
       " is not supported with model.kind = \"distribution\" yet (issue 35: the size "
-      "distribution has no planetesimals, erosion or bouncing); ";
-  if (cfg.flag("planetesimals.coagulation") || cfg.str("planetesimals.si") != "none")
-    cfg.fail(cfg.flag("planetesimals.coagulation") ? "planetesimals.coagulation"
-                                                   : "planetesimals.si",
-             "planetesimal formation per bin" + not_yet +
-                 "set planetesimals.coagulation = false and planetesimals.si = \"none\"");
+      "distribution has no erosion or bouncing); ";
+  // the critical metallicity Z_crit(St) is a law of one St (spec §7.2), with no per-bin
+  // form (physics/modules/bin_planetesimals.hpp)
+  if (cfg.str("planetesimals.si") == "zcrit")
+    cfg.fail("planetesimals.si",
+             "= \"zcrit\" is not supported with model.kind = \"distribution\" (its "
+             "critical metallicity Z_crit(St) is a law of one Stokes number); use si = "
+             "\"d16\" or \"s18\", which count the bins with St >= St_si_min");
   if (cfg.str("erosion.model") != "none")
     cfg.fail("erosion.model",
              "erosion (Krijt et al. 2015)" + not_yet +

@@ -32,7 +32,7 @@ class DustTransport;
 class ViscousGas;
 class PorousGrowth;
 class GrowthStokes;
-class Planetesimals;
+class PlanetesimalChannels;
 class SizeDistribution;
 class CellGas;
 struct ParticleCodec;
@@ -108,7 +108,7 @@ class Simulation {
   std::pair<double, double> planetesimal_mass(std::span<const double> y) const;
   //! Sigma_pl per channel at the cell centres [g cm^-2] (empty when off).
   std::vector<double> sigma_pl(std::span<const double> y, bool si) const;
-  const Planetesimals* planetesimals() const { return planetesimals_; }
+  const PlanetesimalChannels* planetesimals() const { return planetesimals_; }
   const std::vector<PebbleMonitor>& pebble_monitors() const { return monitors_; }
   //! Pebble flux (inward mass flow) through every monitor [g s^-1].
   std::vector<double> pebble_flux(std::span<const double> y) const;
@@ -147,7 +147,7 @@ class Simulation {
   std::unique_ptr<ParticleCodec> codec_;
   const PorousGrowth* growth_ = nullptr;
   const GrowthStokes* growth_stokes_ = nullptr;
-  const Planetesimals* planetesimals_ = nullptr;
+  const PlanetesimalChannels* planetesimals_ = nullptr;
   const SizeDistribution* distribution_ = nullptr;
   //! The module that carries the dust: distribution_ if built, else transport_.
   const DustCarrier* dust_ = nullptr;

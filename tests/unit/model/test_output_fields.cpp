@@ -91,15 +91,20 @@ TEST(OutputTable, EveryProcessSceneDeclaresTheFieldsOfEveryModule) {
                            "sigma_pl_coag", "sigma_pl_si", "m_through", "pebble_flux"})
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   // the size distribution (model.kind = "distribution") replaces the single-size
-  // modules, so it has a scene of its own
+  // modules (size_distribution, and bin_planetesimals for the planetesimal channels),
+  // so it has a scene of its own
+  const std::vector<std::string> channels{"planetesimals.coagulation=true",
+                                          "planetesimals.si=\"d16\""};
   const Simulation dist(load_scene(
-      std::string(PANOPTIC_SOURCE_DIR) + "/params/tests/distribution_small.toml", {}));
+      std::string(PANOPTIC_SOURCE_DIR) + "/params/tests/distribution_small.toml",
+      channels));
   names.clear();
   for (const OutputField& f : dist.output_fields()) names.push_back(f.name);
-  for (const char* want : {"sigma", "sigma_d", "sigma_g", "St", "mdot_d", "m", "a",
-                           "m_out_inner", "m_through", "pebble_flux"})
+  for (const char* want :
+       {"sigma", "sigma_d", "sigma_g", "St", "mdot_d", "m", "a", "m_out_inner",
+        "m_through", "pebble_flux", "sigma_pl", "sigma_pl_coag", "sigma_pl_si"})
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
-  EXPECT_EQ(every.model().modules().size() + 1, module_registry().size());
+  EXPECT_EQ(every.model().modules().size() + 2, module_registry().size());
   EXPECT_EQ(dist.model().modules().back()->name(), "size_distribution");
 }
 
