@@ -68,7 +68,8 @@ bool may_change_on_restart(std::string_view key) {
       "output.file",        "solver.rtol",
       "solver.atol_sigma",  "solver.max_steps",
       "solver.max_dt_yr",   "solver.reinit_at_snapshots",
-      "solver.newton_coef", "solver.steps_per_jacobian"};
+      "solver.newton_coef", "solver.steps_per_jacobian",
+      "solver.linear"};
   if (key.starts_with("checkpoint.") || key.starts_with("meta.") ||
       key.starts_with("observe."))  // read by `panoptic observe` only
     return true;

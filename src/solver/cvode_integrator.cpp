@@ -17,6 +17,7 @@
 #include <string>
 
 #include "src/core/error.hpp"
+#include "src/solver/block_linear_solver.hpp"
 #include "src/solver/serial_vector_ops.hpp"
 
 namespace panoptic {
@@ -48,27 +49,44 @@ extern "C" int rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* data
   return flag;
 }
 
-// KLU set-up and solve timed for CvodeIntegrator::set_profile. A SUNLinearSolver has no
-// user data, so the accumulator is a file-level pointer (benchmarks are single-threaded).
+// The linear solver's set-up and solve timed for CvodeIntegrator::set_profile. A
+// SUNLinearSolver has no user data, so the accumulator is a file-level pointer
+// (benchmarks are single-threaded).
 CallbackTimes* g_ls_times = nullptr;
-extern "C" int timed_lsetup(SUNLinearSolver S, SUNMatrix A) {
+template <int (*Setup)(SUNLinearSolver, SUNMatrix)>
+int timed_lsetup(SUNLinearSolver S, SUNMatrix A) {
   const auto t0 = Clock::now();
-  const int flag = SUNLinSolSetup_KLU(S, A);
+  const int flag = Setup(S, A);
   if (g_ls_times) {
     g_ls_times->lsetup_s += seconds_since(t0);
     ++g_ls_times->n_lsetup;
   }
   return flag;
 }
-extern "C" int timed_lsolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
-                            sunrealtype tol) {
+template <int (*Solve)(SUNLinearSolver, SUNMatrix, N_Vector, N_Vector, sunrealtype)>
+int timed_lsolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
+                 sunrealtype tol) {
   const auto t0 = Clock::now();
-  const int flag = SUNLinSolSolve_KLU(S, A, x, b, tol);
+  const int flag = Solve(S, A, x, b, tol);
   if (g_ls_times) {
     g_ls_times->lsolve_s += seconds_since(t0);
     ++g_ls_times->n_lsolve;
   }
   return flag;
+}
+
+// Sets the set-up and solve of `ls` (KLU's or the block solver's), timed or not.
+void set_solver_ops(void* ls, LinearSolverKind kind, bool timed) {
+  auto* ops = static_cast<SUNLinearSolver>(ls)->ops;
+  if (kind == LinearSolverKind::block) {
+    ops->setup =
+        timed ? timed_lsetup<block_linear_solver_setup> : block_linear_solver_setup;
+    ops->solve =
+        timed ? timed_lsolve<block_linear_solver_solve> : block_linear_solver_solve;
+  } else {
+    ops->setup = timed ? timed_lsetup<SUNLinSolSetup_KLU> : SUNLinSolSetup_KLU;
+    ops->solve = timed ? timed_lsolve<SUNLinSolSolve_KLU> : SUNLinSolSolve_KLU;
+  }
 }
 
 // The RHS inside the Newton iteration: the same, keeping the iterate, so that a
@@ -213,12 +231,25 @@ void CvodeIntegrator::create_cvode(double t0) {
   if (constr_) check(CVodeSetConstraints(cvode_, nv(constr_)), "CVodeSetConstraints");
   const auto& pattern = model_.pattern();
   A_ = SUNSparseMatrix(n, n, pattern.nnz(), CSC_MAT, ctx);
-  LS_ = SUNLinSol_KLU(nv(y_), static_cast<SUNMatrix>(A_), ctx);
-  if (A_ == nullptr || LS_ == nullptr) throw SolverError("KLU set-up failed");
-  if (callback_data_.times) {
-    static_cast<SUNLinearSolver>(LS_)->ops->setup = timed_lsetup;
-    static_cast<SUNLinearSolver>(LS_)->ops->solve = timed_lsolve;
+  if (opt_.linear == LinearSolverKind::block) {
+    if (!block_lu_) {
+      const StateLayout& layout = model_.layout();
+      const std::string why =
+          BlockBandedLU::refusal(pattern, layout.n_cells(), layout.n_cell_vars());
+      if (!why.empty())
+        throw SolverError(
+            "solver.linear = \"block\" cannot solve this scene's Newton "
+            "systems: " +
+            why + "; use solver.linear = \"klu\"");
+      block_lu_ = std::make_unique<BlockBandedLU>(pattern, layout.n_cells(),
+                                                  layout.n_cell_vars());
+    }
+    LS_ = make_block_linear_solver(*block_lu_, ctx);
+  } else {
+    LS_ = SUNLinSol_KLU(nv(y_), static_cast<SUNMatrix>(A_), ctx);
   }
+  if (A_ == nullptr || LS_ == nullptr) throw SolverError("linear solver set-up failed");
+  if (callback_data_.times) set_solver_ops(LS_, opt_.linear, true);
   check(CVodeSetLinearSolver(cvode_, static_cast<SUNLinearSolver>(LS_),
                              static_cast<SUNMatrix>(A_)),
         "CVodeSetLinearSolver");
@@ -286,9 +317,7 @@ void CvodeIntegrator::derivative(std::span<double> out) const {
 void CvodeIntegrator::set_profile(CallbackTimes* times) {
   callback_data_.times = times;
   g_ls_times = times;
-  auto* ls = static_cast<SUNLinearSolver>(LS_);
-  ls->ops->setup = times ? timed_lsetup : SUNLinSolSetup_KLU;
-  ls->ops->solve = times ? timed_lsolve : SUNLinSolSolve_KLU;
+  set_solver_ops(LS_, opt_.linear, times != nullptr);
 }
 
 CvodeIntegrator::StepInfo CvodeIntegrator::step_info(int k, bool all_errors) const {
@@ -361,9 +390,9 @@ void CvodeIntegrator::reinit(double t, std::span<const double> y) {
   ++before_.nreinit;
   std::copy(y.begin(), y.end(), N_VGetArrayPointer(nv(y_)));
   clip_to_constraints();
-  // A new CVODE and KLU rather than CVodeReInit: a restart from a checkpoint builds new
-  // ones, and only the same construction guarantees the same bits whatever state
-  // CVodeReInit may keep (KLU's pivot order, step-size limits). The cost is a few
+  // A new CVODE and linear solver rather than CVodeReInit: a restart from a checkpoint
+  // builds new ones, and only the same construction guarantees the same bits whatever
+  // state CVodeReInit may keep (KLU's pivot order, step-size limits). The cost is a few
   // allocations and one KLU analysis per snapshot.
   free_cvode();
   create_cvode(t);

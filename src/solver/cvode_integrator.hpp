@@ -1,9 +1,11 @@
 #pragma once
-//! CVODE (BDF, variable order) with a sparse Jacobian in CSC form solved by KLU.
-//! RAII over SUNContext, N_Vector, SUNSparseMatrix, SUNLinearSolver and the CVODE memory;
-//! non-copyable. The Jacobian pattern comes from the DiskModel and is copied into the
-//! matrix at every call (CVODE zeroes the index arrays with the values).
+//! CVODE (BDF, variable order) with a sparse Jacobian in CSC form, its Newton systems
+//! solved by KLU or by the block-banded solver (block_banded_lu.hpp) of a layout of
+//! cells. RAII over SUNContext, N_Vector, SUNSparseMatrix, SUNLinearSolver and the CVODE
+//! memory; non-copyable. The Jacobian pattern comes from the DiskModel and is copied into
+//! the matrix at every call (CVODE zeroes the index arrays with the values).
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -15,7 +17,8 @@ namespace panoptic {
 
 //! Wall time spent in each part of the integration, for benchmarks (see
 //! CvodeIntegrator::set_profile): the model's right-hand side and Jacobian, and KLU's
-//! set-up (factorisation) and solve, timed around each call.
+//! set-up (factorisation) and solve, timed around each call (those of the block solver
+//! with solver.linear = "block").
 struct CallbackTimes {
   double rhs_s = 0.0, jac_s = 0.0, lsetup_s = 0.0, lsolve_s = 0.0;
   long n_rhs = 0, n_jac = 0, n_lsetup = 0, n_lsolve = 0;
@@ -32,6 +35,12 @@ struct CvodeCallbackData {
   std::vector<std::size_t> diagonal;
 };
 
+//! The solver of CVODE's Newton systems (solver.linear).
+enum class LinearSolverKind {
+  klu,   //!< KLU, sparse LU of the whole matrix
+  block  //!< BlockBandedLU: dense LU of the cells' blocks, banded elimination
+};
+
 struct IntegratorOptions {
   double rtol = 1e-6;
   std::vector<double> atol;         //!< per component
@@ -42,7 +51,10 @@ struct IntegratorOptions {
   //! CVodeSetJacEvalFrequency and CVodeSetLSetupFrequency (solver.steps_per_jacobian);
   //! 0: CVODE's own (51 and 20)
   long steps_per_jacobian = 0;
+  LinearSolverKind linear = LinearSolverKind::klu;
 };
+
+class BlockBandedLU;
 
 //! CVODE's weighted RMS norm sqrt(sum_i (x_i w_i)^2 / n), summed in four independent
 //! partial sums (the integrator installs it as the state vector's norm).
@@ -85,6 +97,9 @@ class CvodeIntegrator {
   };
   StepInfo step_info(int k, bool all_errors = false) const;
 
+  //! The block solver (solver.linear = "block"; null with KLU).
+  const BlockBandedLU* block_solver() const { return block_lu_.get(); }
+
   double time() const { return t_; }
   std::span<const double> state() const;
   //! dy/dt at time() from CVODE's interpolating polynomial of the last step (valid after
@@ -100,7 +115,8 @@ class CvodeIntegrator {
   SolverStats cvode_counters() const;
   //! Sets the negative round-off of components constrained to y >= 0 to zero in y_.
   void clip_to_constraints();
-  //! Creates the CVODE memory, the matrix and KLU at (t0, y_) with the options.
+  //! Creates the CVODE memory, the matrix and the linear solver at (t0, y_) with the
+  //! options.
   void create_cvode(double t0);
   void free_cvode();
 
@@ -114,6 +130,9 @@ class CvodeIntegrator {
   void* constr_ = nullptr;  // N_Vector
   void* A_ = nullptr;       // SUNMatrix
   void* LS_ = nullptr;      // SUNLinearSolver
+  //! The block solver's factors (solver.linear = "block"), kept across reinit: it holds
+  //! no state from one factorisation to the next, only the storage and the pattern's map.
+  std::unique_ptr<BlockBandedLU> block_lu_;
   void* cvode_ = nullptr;
   CvodeCallbackData callback_data_;  // newton_iterate: for the report of a failure
   std::string cvode_message_;

@@ -1,0 +1,166 @@
+#include "src/solver/block_banded_lu.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace panoptic {
+namespace {
+
+// A lower block with fewer than this share of non-zeros is multiplied as sparse times
+// dense: the transport's blocks hold a few entries per row (a bin, its porosity moment,
+// Sigma_g), a block filled by the elimination (bandwidth > 1) is dense.
+constexpr long kSparseShareInverse = 16;
+
+// Whether the pivots of a factorised block are all non-zero and finite.
+bool usable(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
+  const auto d = lu.matrixLU().diagonal().cwiseAbs();
+  return d.allFinite() && (d.size() == 0 || d.minCoeff() > 0.0);
+}
+
+}  // namespace
+
+std::string BlockBandedLU::refusal(const SparsityPattern& pattern, int n_blocks,
+                                   int block_size) {
+  const long n = pattern.size();
+  const long n_cell_part = static_cast<long>(n_blocks) * block_size;
+  if (n_blocks < 1 || block_size < 1 || n_cell_part > n)
+    return std::to_string(n_blocks) + " cells of " + std::to_string(block_size) +
+           " variables do not fit a matrix of size " + std::to_string(n);
+  const auto col_ptr = pattern.col_ptr();
+  const auto rows = pattern.row_index();
+  for (long c = n_cell_part; c < n; ++c)
+    for (auto p = col_ptr[c]; p < col_ptr[c + 1]; ++p)
+      if (rows[p] < n_cell_part)
+        return "the row of variable " + std::to_string(rows[p] % block_size) +
+               " of cell " + std::to_string(rows[p] / block_size) +
+               " depends on global variable " + std::to_string(c - n_cell_part) +
+               " (the block solver needs cell rows free of the globals)";
+  return "";
+}
+
+BlockBandedLU::BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int block_size)
+    : n_(n_blocks), b_(block_size) {
+  if (const std::string why = refusal(pattern, n_blocks, block_size); !why.empty())
+    throw std::invalid_argument("BlockBandedLU: " + why);
+  n_cell_part_ = static_cast<long>(n_) * b_;
+  n_g_ = static_cast<int>(pattern.size() - n_cell_part_);
+  const auto col_ptr = pattern.col_ptr();
+  const auto rows = pattern.row_index();
+  long n_coupling = 0;
+  for (long c = 0; c < n_cell_part_; ++c)
+    for (auto p = col_ptr[c]; p < col_ptr[c + 1]; ++p) {
+      if (rows[p] >= n_cell_part_) {
+        ++n_coupling;
+        continue;
+      }
+      w_ = std::max<int>(w_, static_cast<int>(std::abs(rows[p] / b_ - c / b_)));
+    }
+
+  blocks_.resize(static_cast<std::size_t>(n_) * (2 * w_ + 1));
+  for (int i = 0; i < n_; ++i)
+    for (int j = std::max(0, i - w_); j <= std::min(n_ - 1, i + w_); ++j)
+      block(i, j).setZero(b_, b_);
+  lower_sparse_.resize(blocks_.size());
+  lower_is_sparse_.assign(blocks_.size(), 0);
+  pivots_.resize(static_cast<std::size_t>(n_));
+  g_.setZero(n_g_, n_g_);
+  scratch_.resize(std::max(b_, n_g_));
+  scratch_block_.resize(b_, b_);
+  c_row_.reserve(static_cast<std::size_t>(n_coupling));
+  c_col_.reserve(static_cast<std::size_t>(n_coupling));
+  c_value_.assign(static_cast<std::size_t>(n_coupling), 0.0);
+
+  // c_value_ is sized before the pointers into it are taken: they stay valid.
+  destination_.resize(static_cast<std::size_t>(pattern.nnz()));
+  std::size_t t = 0;
+  for (long c = 0; c < pattern.size(); ++c)
+    for (auto p = col_ptr[c]; p < col_ptr[c + 1]; ++p) {
+      const long r = rows[p];
+      double*& to = destination_[static_cast<std::size_t>(p)];
+      if (r < n_cell_part_) {
+        Matrix& m = block(static_cast<int>(r / b_), static_cast<int>(c / b_));
+        to = &m(r % b_, c % b_);
+      } else if (c < n_cell_part_) {
+        c_row_.push_back(static_cast<int>(r - n_cell_part_));
+        c_col_.push_back(c);
+        to = &c_value_[t++];
+      } else {
+        to = &g_(r - n_cell_part_, c - n_cell_part_);
+      }
+    }
+}
+
+bool BlockBandedLU::factorize(std::span<const double> values) {
+  for (Matrix& m : blocks_) m.setZero();
+  g_.setZero();
+  for (std::size_t p = 0; p < destination_.size(); ++p) *destination_[p] = values[p];
+
+  // Block Gaussian elimination (right-looking): at step k the blocks of row k and of
+  // column k are final; U_kj <- D_k^-1 U_kj, then A_ij -= A_ik (D_k^-1 U_kj) for the
+  // rows i and columns j within the band below and right of k.
+  for (int k = 0; k < n_; ++k) {
+    pivots_[k].compute(block(k, k));
+    if (!usable(pivots_[k])) return false;
+    const int last = std::min(n_ - 1, k + w_);
+    for (int j = k + 1; j <= last; ++j) {
+      scratch_block_ = block(k, j);
+      block(k, j) = pivots_[k].solve(scratch_block_);
+    }
+    for (int i = k + 1; i <= last; ++i) {
+      const std::size_t s = slot(i, k);
+      const Matrix& lower = blocks_[s];
+      const long nnz = (lower.array() != 0.0).count();
+      lower_is_sparse_[s] = nnz * kSparseShareInverse < static_cast<long>(b_) * b_;
+      if (lower_is_sparse_[s]) lower_sparse_[s] = lower.sparseView();
+      for (int j = k + 1; j <= last; ++j) {
+        if (lower_is_sparse_[s])
+          block(i, j).noalias() -= lower_sparse_[s] * block(k, j);
+        else
+          block(i, j).noalias() -= lower * block(k, j);
+      }
+    }
+  }
+  if (n_g_ > 0) {
+    g_lu_.compute(g_);
+    if (!usable(g_lu_)) return false;
+  }
+  return true;
+}
+
+void BlockBandedLU::subtract_lower_product(int i, int j,
+                                           const Eigen::Ref<const Eigen::VectorXd>& x,
+                                           Eigen::Ref<Eigen::VectorXd> y) const {
+  const std::size_t s = slot(i, j);
+  if (lower_is_sparse_[s])
+    y.noalias() -= lower_sparse_[s] * x;
+  else
+    y.noalias() -= blocks_[s] * x;
+}
+
+bool BlockBandedLU::solve(std::span<double> x) const {
+  Eigen::Map<Eigen::VectorXd> v(x.data(), static_cast<Eigen::Index>(x.size()));
+  // Forward: y_k = D_k^-1 (b_k - sum_i A_ki y_i), the rows below updated as each y_k is
+  // known; backward: x_k = y_k - sum_j (D_k^-1 U_kj) x_j.
+  for (int k = 0; k < n_; ++k) {
+    auto xk = v.segment(static_cast<Eigen::Index>(k) * b_, b_);
+    scratch_.head(b_) = pivots_[k].solve(xk);
+    xk = scratch_.head(b_);
+    for (int i = k + 1; i <= std::min(n_ - 1, k + w_); ++i)
+      subtract_lower_product(i, k, xk, v.segment(static_cast<Eigen::Index>(i) * b_, b_));
+  }
+  for (int k = n_ - 1; k >= 0; --k)
+    for (int j = k + 1; j <= std::min(n_ - 1, k + w_); ++j)
+      v.segment(static_cast<Eigen::Index>(k) * b_, b_).noalias() -=
+          block(k, j) * v.segment(static_cast<Eigen::Index>(j) * b_, b_);
+  if (n_g_ > 0) {
+    auto xg = v.tail(n_g_);
+    for (std::size_t t = 0; t < c_value_.size(); ++t)
+      xg(c_row_[t]) -= c_value_[t] * v(c_col_[t]);
+    scratch_.head(n_g_) = g_lu_.solve(xg);
+    xg = scratch_.head(n_g_);
+  }
+  return v.allFinite();
+}
+
+}  // namespace panoptic
