@@ -26,6 +26,47 @@ struct CellModel {
   OutcomeSwitches outcomes;  //!< fragmentation and cratering switches and speeds
 };
 
+//! The outcomes of a cell's pairs under the scene's switches (spec §15.2):
+//! * fragmentation on, erosion off: DustPy's default model; similar pairs fragment and
+//!   pairs beyond its mass ratio (FragmentationModel::erosion_mass_ratio) crater, both
+//!   with the Maxwell-Boltzmann probability at the species' v_frag.
+//! * erosion on (any erosion.model: in a distribution the pairs themselves carry the
+//!   rule that the single-size closures E1 and E2 of spec §5.2 approximate): the unequal
+//!   pairs, m_j/m_i < R_crit = 1/erosion_mass_ratio = 0.1 in whole bins (DustPy's
+//!   cratering threshold, dustpy/std/dust.f90 coagulation_parameters), follow Krijt et
+//!   al.'s (2015) rule instead: the target loses eps_eros m_j above v_eros and the
+//!   projectile sticks below (spec §5.1, §15.2), for every species and whether
+//!   fragmentation is on or off. With fragmentation on too, an unequal pair has only this
+//!   outcome and the similar pairs only fragmentation at v_frag: the two rules split the
+//!   pairs by mass ratio at the same threshold as DustPy's fragmentation and cratering
+//!   (Stammler & Birnstiel 2022; Krijt et al. 2015 model collisions with projectiles
+//!   much smaller than the target).
+inline OutcomeSwitches outcome_switches(const GrowthOptions& o, const Species& sp) {
+  OutcomeSwitches s;
+  s.fragmentation = o.fragmentation && sp.fragments;
+  s.v_frag = sp.v_frag;
+  if (o.eroding()) {
+    s.cratering = true;
+    s.v_eros = o.v_eros;
+    s.w_eros = o.w_eros;
+  } else {
+    s.cratering = s.fragmentation;
+    s.v_eros = sp.v_frag;
+  }
+  return s;
+}
+
+//! The engine's fragment model under the scene's switches: DustPy's (excavated mass 1
+//! projectile mass), with erosion on Krijt et al.'s eps_eros (spec §5.1). The fragments
+//! of an eroding pair, eps_eros m_j + m_j, follow DustPy's cratering distribution, n(m) ∝
+//! m^-11/6 up to the projectile's mass: what the target loses is of the order of the
+//! projectile's mass, and Krijt et al. (2015) track it as small particles.
+inline FragmentationModel fragmentation_model(const GrowthOptions& o) {
+  FragmentationModel f;
+  if (o.eroding()) f.excavated_mass = o.eps_eros;
+  return f;
+}
+
 //! Coefficients of the cell with bin masses sigma and, for porous aggregates, psi (empty:
 //! compact, phi = 1). A bin without mass (psi = 0) is given phi = 1: it enters only the
 //! Jacobian, through the rate of its first collisions. With `derivatives` (porous, for
@@ -96,10 +137,14 @@ inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
         const int hi = i > j ? i : j, lo = i > j ? j : i;
         const bool crater = hi - lo > engine.crater_bins();
         const OutcomeSwitches& s = model.outcomes;
-        if (crater ? s.cratering : s.fragmentation)
-          c.dp_dlnu[ij] = (fragmentation_probability(v, crater ? s.v_eros : s.v_frag) -
-                           c.p_frag[ij]) /
-                          step;
+        // the erosion step (width w_eros ~ 0.01 in dv/v_eros) by the chain rule through
+        // the difference of dv: its own forward difference would carry an error of
+        // step / w^2 (4e-5 of the Jacobian on the test's state)
+        if (crater && s.cratering && s.w_eros > 0.0)
+          c.dp_dlnu[ij] =
+              erosion_probability_slope(dv[ij], s.v_eros, s.w_eros) * (v - dv[ij]) / step;
+        else if (crater ? s.cratering : s.fragmentation)
+          c.dp_dlnu[ij] = (pair_loss_probability(v, crater, s) - c.p_frag[ij]) / step;
       }
     }
   }

@@ -5,7 +5,9 @@
 //! densities (Birnstiel, Dullemond & Brauer 2010; DustPy, dust.f90 `kernel`); and
 //! p_frag = (1 + 3/2 x) exp(-3/2 x), x = (v_frag/dv)^2, the probability that the pair
 //! meets faster than v_frag when its speeds are Maxwell-Boltzmann distributed around dv
-//! (DustPy, dust.f90 `pfrag`; Stammler & Birnstiel 2022). The pair speeds come from a
+//! (DustPy, dust.f90 `pfrag`; Stammler & Birnstiel 2022); or, for the unequal pairs
+//! with erosion on, Krijt et al.'s (2015) threshold at v_eros smoothed as spec §5.2's
+//! S(x) (erosion_probability). The pair speeds come from a
 //! caller-supplied function, so that the relative velocities of physics/
 //! relative_velocity.hpp (spec §3 pair by pair) and the drag of physics/drag.hpp plug in
 //! unchanged (bin_properties, pair_speeds below).
@@ -93,6 +95,23 @@ inline double fragmentation_probability(double dv, double v_frag) {
   return (1.0 + x) * std::exp(-x);
 }
 
+//! Probability that an unequal pair at speed dv erodes its target: Krijt et al.'s (2015)
+//! rule (spec §5.1: erosion above v_eros, sticking below) with the threshold smoothed
+//! as the single-size model's (spec §5.2, physics/erosion.hpp), 1 - S(dv/v_eros) =
+//! 1/2 [1 + tanh((dv/v_eros - 1)/w)] [-].
+inline double erosion_probability(double dv, double v_eros, double w) {
+  return tanh_step((dv / v_eros - 1.0) / w);
+}
+
+//! d erosion_probability / d dv = (1 - tanh^2 z) / (2 w v_eros), z = (dv/v_eros - 1)/w
+//! [s cm^-1]; 0 where the step is saturated (tanh_step).
+inline double erosion_probability_slope(double dv, double v_eros, double w) {
+  const double z = (dv / v_eros - 1.0) / w;
+  if (std::abs(z) > 20.0) return 0.0;
+  const double t = std::tanh(z);
+  return 0.5 * (1.0 - t * t) / (w * v_eros);
+}
+
 //! The switches of the outcome model (spec §9 style; each off by default).
 struct OutcomeSwitches {
   bool fragmentation = false;  //!< similar-size pairs fragment above v_frag
@@ -101,11 +120,25 @@ struct OutcomeSwitches {
   //! [cm s^-1]; DustPy uses v_frag for its cratering pairs too, Krijt et al. (2015)
   //! their own v_eros (spec §5.1).
   double v_eros = 100.0;
+  //! The unequal pairs' switch at v_eros: 0, DustPy's Maxwell-Boltzmann probability
+  //! (fragmentation_probability); > 0, Krijt et al.'s (2015) threshold smoothed with
+  //! this width (erosion_probability, erosion.width) [-].
+  double w_eros = 0.0;
 };
 
+//! Probability that a pair at speed dv [cm s^-1] fragments (similar sizes) or craters
+//! (`crater`: unequal, more than Smoluchowski::crater_bins() bins apart) under the
+//! switches s; a process switched off has probability 0 (the pair sticks) [-].
+inline double pair_loss_probability(double dv, bool crater, const OutcomeSwitches& s) {
+  if (!crater) return s.fragmentation ? fragmentation_probability(dv, s.v_frag) : 0.0;
+  if (!s.cratering) return 0.0;
+  return s.w_eros > 0.0 ? erosion_probability(dv, s.v_eros, s.w_eros)
+                        : fragmentation_probability(dv, s.v_eros);
+}
+
 //! p_ij of every pair (N x N row-major): pairs more than engine.crater_bins() bins apart
-//! crater with the probability of v_eros, the others fragment with that of v_frag; a
-//! process switched off has probability 0 (the pair sticks) [-].
+//! crater with the probability of v_eros, the others fragment with that of v_frag
+//! (pair_loss_probability) [-].
 inline std::vector<double> fragmentation_probabilities(const Smoluchowski& engine,
                                                        std::span<const double> dv,
                                                        const OutcomeSwitches& s) {
@@ -115,9 +148,7 @@ inline std::vector<double> fragmentation_probabilities(const Smoluchowski& engin
     for (int j = 0; j <= i; ++j) {
       const bool crater = i - j > engine.crater_bins();
       const std::size_t ij = static_cast<std::size_t>(i) * n + j;
-      double pf = 0.0;
-      if (crater && s.cratering) pf = fragmentation_probability(dv[ij], s.v_eros);
-      if (!crater && s.fragmentation) pf = fragmentation_probability(dv[ij], s.v_frag);
+      const double pf = pair_loss_probability(dv[ij], crater, s);
       p[ij] = pf;
       p[static_cast<std::size_t>(j) * n + i] = pf;
     }

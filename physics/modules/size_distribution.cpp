@@ -25,7 +25,9 @@ SizeDistribution::SizeDistribution(StateLayout& layout, const Grid& grid,
       flux_(grid, disk, gas, viscous, transport),
       opt_(options),
       engine_(coag::MassGrid(first_bin_mass(options, species), options.m_max,
-                             options.bins_per_decade)),
+                             options.bins_per_decade),
+              options.coagulation ? coag::fragmentation_model(options.growth)
+                                  : coag::FragmentationModel{}),
       porous_(options.growth.porosity),
       n_bins_(engine_.size()),
       mass_unit_(dust_mass) {
@@ -72,15 +74,9 @@ double SizeDistribution::first_bin_mass(const SizeDistributionOptions& options,
 }
 
 coag::CellModel SizeDistribution::cell_model(int cell) const {
-  // DustPy's outcome model: pairs fragment above v_frag and, beyond its mass ratio,
-  // crater at the same speed (spec §15.2)
+  // DustPy's outcome model, with erosion Krijt et al.'s on the unequal pairs (spec §15.2)
   const physics::Species& sp = species_[cell];
-  coag::CellModel model{sp, opt_.growth, {}};
-  model.outcomes.fragmentation = opt_.growth.fragmentation && sp.fragments;
-  model.outcomes.cratering = model.outcomes.fragmentation;
-  model.outcomes.v_frag = sp.v_frag;
-  model.outcomes.v_eros = sp.v_frag;
-  return model;
+  return {sp, opt_.growth, coag::outcome_switches(opt_.growth, sp)};
 }
 
 void SizeDistribution::build_cell(int cell, const physics::LocalGas& gas) const {

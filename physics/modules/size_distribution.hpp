@@ -6,7 +6,9 @@
 //! (physics/modules/dust_face_flux.hpp: the same drift, diffusion, boundaries and the
 //! booking of the mass through r_in, spec §6.1, §6.3), and coagulates in its cell by the
 //! Smoluchowski equation of physics/coagulation/ (sticking with the two-bin split,
-//! DustPy's fragmentation and cratering; spec §15.2).
+//! DustPy's fragmentation and cratering; with erosion on, either erosion.model, Krijt et
+//! al.'s 2015 rule on the unequal pairs instead of cratering: spec §15.2,
+//! coagulation::outcome_switches).
 //!
 //! The coefficients of a cell (kernel, fragmentation probabilities, each bin's St) depend
 //! on the gas only (compact bins: spec §15.1 with phi = 1): they are computed once for a
@@ -40,7 +42,7 @@
 //! flows is the same AD of the face flow, mapped to the rows that receive it.
 //!
 //! Planetesimal formation per bin: physics/modules/bin_planetesimals.hpp. Not carried yet
-//! (refused by src/model/scene_validation.cpp): erosion and bouncing.
+//! (refused by src/model/scene_validation.cpp): bouncing.
 #include <span>
 #include <string>
 #include <vector>
@@ -161,7 +163,8 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
  private:
   //! The coefficients and St of every bin of `cell` from its gas (compact).
   void build_cell(int cell, const physics::LocalGas& gas) const;
-  //! The outcome model of `cell`'s species (DustPy's: spec §15.2).
+  //! The outcome model of `cell`'s species (DustPy's, with erosion Krijt et al.'s on the
+  //! unequal pairs: spec §15.2).
   physics::coagulation::CellModel cell_model(int cell) const;
   //! Porous: the coefficients (with their derivatives by ln u for the Jacobian), St and
   //! d St/d ln u of every bin of every cell from state y.

@@ -9,6 +9,7 @@
 #include "physics/modules/porous_growth.hpp"
 #include "physics/modules/size_distribution.hpp"
 #include "physics/stokes_model.hpp"
+#include "src/core/error.hpp"
 #include "src/core/units.hpp"
 #include "src/model/scene_to_physics.hpp"
 #include "src/model/simulation.hpp"
@@ -55,7 +56,19 @@ std::string variable_names(int count, NameOf name_of) {
 // transport alone at a prescribed St, and one with growth alone sticks compact
 // particles at every speed; each off switch is named with its key.
 std::string physics_choices(const Config& cfg) {
-  if (cfg.str("model.kind") != "single_size") return "";
+  if (cfg.str("model.kind") != "single_size") {
+    // the distribution resolves the projectiles: the erosion model names a closure of
+    // the single-size model, and either selects the rule itself on the pairs
+    if (!cfg.flag("growth.enabled") || cfg.str("erosion.model") == "none") return "";
+    return "erosion: the Krijt et al. (2015) rule on the pairs of bins with m_proj/"
+           "m_target < 1/10: above erosion.v_eros_m_s = " +
+           num(cfg.real("erosion.v_eros_m_s")) +
+           " m/s the target loses eps_eros = " + num(cfg.real("erosion.eps_eros")) +
+           " x m_proj, below it the projectile sticks (erosion.model = \"" +
+           cfg.str("erosion.model") +
+           "\" names a single-size closure, spec §5.2; the distribution applies the "
+           "rule itself, spec §15.2)\n";
+  }
   std::ostringstream s;
   if (!cfg.flag("growth.enabled")) {
     s << "growth: off (growth.enabled = false"

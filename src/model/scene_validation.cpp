@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "physics/coagulation/smoluchowski.hpp"
 #include "src/core/error.hpp"
 #include "src/core/units.hpp"
 #include "src/model/scene_to_physics.hpp"
@@ -73,7 +74,7 @@ void validate_distribution(const Config& cfg) {
   if (cfg.str("model.kind") != "distribution") return;
   const std::string not_yet =
       " is not supported with model.kind = \"distribution\" yet (issue 35: the size "
-      "distribution has no erosion or bouncing); ";
+      "distribution has no bouncing); ";
   // the critical metallicity Z_crit(St) is a law of one St (spec §7.2), with no per-bin
   // form (physics/modules/bin_planetesimals.hpp)
   if (cfg.str("planetesimals.si") == "zcrit")
@@ -81,11 +82,16 @@ void validate_distribution(const Config& cfg) {
              "= \"zcrit\" is not supported with model.kind = \"distribution\" (its "
              "critical metallicity Z_crit(St) is a law of one Stokes number); use si = "
              "\"d16\" or \"s18\", which count the bins with St >= St_si_min");
-  if (cfg.str("erosion.model") != "none")
-    cfg.fail("erosion.model",
-             "erosion (Krijt et al. 2015)" + not_yet +
-                 "set erosion.model = \"none\" (with fragmentation.enabled, unequal "
-                 "pairs crater as in DustPy)");
+  // erosion (any model): Krijt et al.'s rule on the pairs m_j/m_i < 1/ratio
+  // (physics/coagulation/cell_coefficients.hpp), whose target keeps m_i - eps_eros m_j
+  const double ratio = physics::coagulation::FragmentationModel{}.erosion_mass_ratio;
+  if (cfg.flag("growth.enabled") && cfg.str("erosion.model") != "none" &&
+      cfg.real("erosion.eps_eros") >= ratio)
+    cfg.fail("erosion.eps_eros",
+             "= " + num(cfg.real("erosion.eps_eros")) + " must be < " + num(ratio) +
+                 " with model.kind = \"distribution\": the erosion rule acts on pairs "
+                 "with m_proj/m_target < 1/" +
+                 num(ratio) + ", and the target must keep mass; lower it");
   if (cfg.flag("bouncing.enabled"))
     cfg.fail("bouncing.enabled", "bouncing" + not_yet + "set bouncing.enabled = false");
   const double m_min = cfg.real("model.m_min_g"), m_max = cfg.real("model.m_max_g");

@@ -97,6 +97,7 @@ UsedWhen one_of(std::string key, std::vector<std::string> names) {
 UsedWhen growth_on() { return is("growth.enabled", {"true"}); }
 UsedWhen disk_model(const std::string& m) { return one_of("disk.model", {m}); }
 UsedWhen dust_init(const std::string& i) { return one_of("dust.init", {i}); }
+UsedWhen single_size() { return one_of("model.kind", {"single_size"}); }
 UsedWhen erosion(std::vector<std::string> models) {
   return one_of("erosion.model", std::move(models));
 }

@@ -49,6 +49,8 @@ UsedWhen growth_on();
 UsedWhen disk_model(const std::string& m);
 //! dust.init = "i"
 UsedWhen dust_init(const std::string& i);
+//! model.kind = "single_size"
+UsedWhen single_size();
 //! erosion.model is one of `models`
 UsedWhen erosion(std::vector<std::string> models);
 //! planetesimals.si is one of `models`

@@ -69,25 +69,32 @@ std::vector<KeySpec> erosion_keys() {
   return {
       when({growth_on()},
            choice("erosion.model", "none", {"none", "halt", "balance"},
-                  "erosion by small projectiles: halt (E1) or rate balance (E2)")),
+                  "erosion by small projectiles: halt (E1) or rate balance (E2), the "
+                  "single-size closures of spec §5.2; with model.kind = "
+                  "\"distribution\" either applies the Krijt et al. (2015) rule itself "
+                  "to the pairs of bins, m_proj/m_target < 1/10 (spec §5.1, §15.2)")),
       when({growth_on(), erosion({"halt", "balance"})},
            positive("erosion.v_eros_m_s", "40.0", "m s^-1",
                     "erosion threshold speed (§5.1)")),
       when({growth_on(), erosion({"halt", "balance"})},
            // >= 1e-3: a sharper switch is a step CVODE's Newton iteration cannot cross
            real("erosion.width", "0.01", "",
-                "width w of the smooth erosion switch (spec §5.2 says 0.05: with fast "
-                "growth that lets particles overshoot the stall by 20-40% in St)",
+                "width w of the smooth erosion switch S(dv/v_eros) (spec §5.2 says "
+                "0.05: with fast growth that lets particles overshoot the stall by "
+                "20-40% in St); the same switch per pair of bins in the distribution",
                 1e-3, false)),
-      when({growth_on(), erosion({"balance"})},
+      when({growth_on(), erosion({"balance"}), single_size()},
            real("erosion.f_s", "0.1", "",
                 "balance: mass fraction of small projectiles (§5.2)", 0.0, false, 1.0,
                 true)),
-      when({growth_on(), erosion({"balance"})},
+      // read by balance (single size) and by the distribution's pairs (either model)
+      when({growth_on(), erosion({"halt", "balance"})},
            real("erosion.eps_eros", "1.0", "",
-                "balance: mass eroded per projectile mass (§5.2)", 0.0, false)),
+                "mass eroded per projectile mass: balance (§5.2), and every model in the "
+                "distribution (§15.2: < 10 there)",
+                0.0, false)),
       when(
-          {growth_on(), erosion({"halt", "balance"})},
+          {growth_on(), erosion({"halt", "balance"}), single_size()},
           real("erosion.St_small", "0.0", "",
                "Stokes number of the small projectiles; 0 = a monomer (§3)", 0.0, false)),
   };

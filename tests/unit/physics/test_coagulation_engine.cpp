@@ -18,6 +18,7 @@
 #include "physics/coagulation/smoluchowski.hpp"
 #include "physics/contact_mechanics.hpp"
 #include "physics/particle.hpp"
+#include "tests/unit/support/coagulation_checks.hpp"
 #include "tests/unit/support/dense_cvode.hpp"
 #include "tests/unit/support/ice_cell_model.hpp"
 #include "tests/unit/support/mmsn_gas.hpp"
@@ -65,59 +66,6 @@ std::vector<double> synthetic_psi(const std::vector<double>& sigma) {
   return p;
 }
 
-//! The analytic Jacobian `jac` (row-major, y.size() squared) against central differences
-//! (step 1e-6 |y_j|) of the right-hand side f: the largest |J - J_fd|, |J| and |J_fd|;
-//! with `column_scaled` each column j is multiplied by y_j (d/d ln y_j).
-struct FdComparison {
-  double err = 0.0, max_analytic = 0.0, max_fd = 0.0;
-};
-template <class F>
-FdComparison compare_with_differences(F f, const std::vector<double>& jac,
-                                      std::vector<double> y, bool column_scaled) {
-  const int nv = static_cast<int>(y.size());
-  FdComparison d;
-  for (int col = 0; col < nv; ++col) {
-    const double h = 1e-6 * std::abs(y[col]);
-    const double keep = y[col];
-    const double w = column_scaled ? keep : 1.0;
-    y[col] = keep + h;
-    const auto fp = f(y);
-    y[col] = keep - h;
-    const auto fm = f(y);
-    y[col] = keep;
-    for (int row = 0; row < nv; ++row) {
-      const double fd = (fp[row] - fm[row]) / (2.0 * h) * w;
-      const double an = jac[static_cast<std::size_t>(row) * nv + col] * w;
-      d.err = std::max(d.err, std::abs(an - fd));
-      d.max_analytic = std::max(d.max_analytic, std::abs(an));
-      d.max_fd = std::max(d.max_fd, std::abs(fd));
-    }
-  }
-  return d;
-}
-
-//! max |J - J_fd| / max |J|, J_fd by central differences of the right-hand side.
-double jacobian_error(const Smoluchowski& eng, const CellCoefficients& c,
-                      std::vector<double> y, bool porous) {
-  const int n = eng.size();
-  const int nv = porous ? 2 * n : n;
-  auto f = [&](const std::vector<double>& yy) {
-    std::vector<double> out(nv);
-    std::span<const double> s(yy.data(), n);
-    std::span<const double> p =
-        porous ? std::span<const double>(yy.data() + n, n) : std::span<const double>();
-    eng.rhs(c, s, p, std::span<double>(out.data(), n),
-            porous ? std::span<double>(out.data() + n, n) : std::span<double>());
-    return out;
-  };
-  std::vector<double> jac(static_cast<std::size_t>(nv) * nv);
-  eng.jacobian(
-      c, std::span<const double>(y.data(), n),
-      porous ? std::span<const double>(y.data() + n, n) : std::span<const double>(), jac);
-  const FdComparison d = compare_with_differences(f, jac, std::move(y), false);
-  return d.err / d.max_analytic;
-}
-
 TEST(CoagulationEngine, JacobianMatchesFiniteDifferencesCompact) {
   const Smoluchowski eng(MassGrid(1.0, 1e6, 5.0));  // 31 bins; cratering beyond 5 bins
   const auto sigma = synthetic_sigma(eng.size());
@@ -133,28 +81,6 @@ TEST(CoagulationEngine, JacobianMatchesFiniteDifferencesPorous) {
   std::vector<double> y = sigma;
   y.insert(y.end(), psi.begin(), psi.end());
   EXPECT_LT(jacobian_error(eng, synthetic_cell(eng, true, true), y, true), 1e-7);
-}
-
-//! max |(J - J_fd) y_j| / max |J_fd y_j| with the coefficients rebuilt from the state
-//! at every difference (`coefficients(y)`), J fed the coefficients' derivatives.
-template <class Coefficients>
-double full_jacobian_error(const Smoluchowski& eng, Coefficients coefficients,
-                           std::vector<double> y) {
-  const int n = eng.size(), nv = 2 * n;
-  auto f = [&](const std::vector<double>& yy) {
-    const CellCoefficients c = coefficients(yy);
-    std::vector<double> out(nv);
-    eng.rhs(c, std::span<const double>(yy.data(), n),
-            std::span<const double>(yy.data() + n, n), std::span<double>(out.data(), n),
-            std::span<double>(out.data() + n, n));
-    return out;
-  };
-  std::vector<double> jac(static_cast<std::size_t>(nv) * nv);
-  eng.jacobian(coefficients(y), std::span<const double>(y.data(), n),
-               std::span<const double>(y.data() + n, n), jac);
-  const FdComparison d = compare_with_differences(f, jac, std::move(y), true);
-  std::printf("full Jacobian error %.2e\n", d.err / d.max_fd);
-  return d.err / d.max_fd;
 }
 
 TEST(CoagulationEngine, JacobianFollowsTheCoefficientsThroughPorosity) {
@@ -223,25 +149,6 @@ TEST(CoagulationEngine, PorousJacobianOfTheDiskCellMatchesFullDifferences) {
                              std::span<const double>(yy.data() + n, n), gas, model, true);
   };
   EXPECT_LT(full_jacobian_error(eng, coefficients, y), 1e-5);
-}
-
-//! |sum_k d sigma_k| / sum_k |d sigma_k| and the same for psi.
-std::pair<double, double> imbalance(const Smoluchowski& eng, const CellCoefficients& c,
-                                    const std::vector<double>& sigma,
-                                    const std::vector<double>& psi) {
-  const int n = eng.size();
-  std::vector<double> ds(n), dp(psi.empty() ? 0 : n);
-  eng.rhs(c, sigma, psi, ds, dp);
-  double s = 0.0, a = 0.0, sp = 0.0, ap = 0.0;
-  for (int k = 0; k < n; ++k) {
-    s += ds[k];
-    a += std::abs(ds[k]);
-    if (!psi.empty()) {
-      sp += dp[k];
-      ap += std::abs(dp[k]);
-    }
-  }
-  return {std::abs(s) / a, psi.empty() ? 0.0 : std::abs(sp) / ap};
 }
 
 TEST(CoagulationEngine, MassConservedToRoundOff) {

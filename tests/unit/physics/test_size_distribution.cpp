@@ -181,7 +181,6 @@ TEST(SizeDistribution, OneBinAtTheSnowLineIsTheSingleSizeTransport) {
 TEST(SizeDistribution, RefusesWhatItDoesNotCarryYet) {
   EXPECT_NO_THROW(validate_scene(small_scene({"snowline.enabled=true"})));
   for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
-           {"erosion.model=\"halt\"", "erosion.model"},
            {"bouncing.enabled=true", "bouncing.enabled"}}) {
     const std::string msg =
         config_error_message([&] { validate_scene(small_scene({set})); }, set);
