@@ -30,10 +30,10 @@
 //! Sinks: sigma_k loses its rate, and psi_k (porous) the same fraction, by the same
 //! laws, linear in their surface density, applied to psi_k: phi_k is kept (spec §6.2).
 //! St and the gas are the SizeDistribution's (the gas of its last refresh). Jacobian:
-//! exact, each bin's laws by AD in its own (sigma_k, psi_k), the trigger's dependence on
-//! every bin of the cell chained through d trigger / d eps_mid: a dense block per cell
-//! when SI is on (that of the coagulation engine), diagonal per bin otherwise, and the
-//! rows of sigma_pl.
+//! exact, each bin's laws by AD in its sigma_k, psi_k and ln phi_k (St through phi), the
+//! trigger's dependence on every bin of the cell chained through d trigger / d rho_mid:
+//! a dense block per cell when SI is on (that of the coagulation engine), each bin's own
+//! sigma_k, psi_k otherwise, and the rows of sigma_pl.
 #include <span>
 #include <utility>
 #include <vector>
