@@ -56,13 +56,17 @@ std::vector<KeySpec> solver_keys() {
               "a cell crosses one of the model's smooth switches, fewer failed "
               "iterations and steps (tests/bench/README.md, Performance); 0: CVODE's own",
               0, 1e6),
-      choice("solver.linear", "klu", {"klu", "block"},
-             "the solver of CVODE's Newton systems: klu = KLU's sparse LU of the whole "
-             "matrix; block = dense LU of each cell's block and block-banded elimination "
-             "over the cells (src/solver/block_banded_lu.hpp), faster where the cells "
-             "hold many coupled variables (model.kind = \"distribution\": "
-             "tests/bench/results/block_solver.md); refused (exit with the reason) where "
-             "a cell's equations read a global variable"),
+      choice(
+          "solver.linear", "klu", {"klu", "block"},
+          "the solver of CVODE's Newton systems: klu = KLU's sparse LU of the whole "
+          "matrix, for single-size runs (a few variables per cell) and for porous "
+          "size distributions (one porous run failed with block: "
+          "tests/bench/results/block_solver.md); block = dense LU of each cell's block "
+          "and block-banded elimination over the cells (src/solver/block_banded_lu.hpp), "
+          "2-3x faster factorisations where the cells hold many coupled variables: "
+          "compact size distributions (the DustPy disk in half the CPU time); refused "
+          "(exit with the reason) where "
+          "a cell's equations read a global variable"),
       flag("solver.reinit_at_snapshots", "true",
            "reinitialise CVODE at every snapshot time, so that a run restarted from a "
            "checkpoint is bit-for-bit identical to one never stopped; with gas.evolve "
