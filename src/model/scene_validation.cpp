@@ -93,7 +93,13 @@ void validate_distribution(const Config& cfg) {
                  "with m_proj/m_target < 1/" +
                  num(ratio) + ", and the target must keep mass; lower it");
   if (cfg.flag("bouncing.enabled"))
-    cfg.fail("bouncing.enabled", "bouncing" + not_yet + "set bouncing.enabled = false");
+    // spec §5.3 as written (no sticking where phi >= phi_bounce, at every speed) would
+    // stop the compact bins of the initial state (phi = 1) from ever sticking: per pair
+    // it needs a speed threshold that the spec does not give
+    cfg.fail("bouncing.enabled",
+             "bouncing" + not_yet +
+                 "spec §5.3's rule has no speed threshold, so per pair it would keep the "
+                 "compact initial bins from ever sticking; set bouncing.enabled = false");
   const double m_min = cfg.real("model.m_min_g"), m_max = cfg.real("model.m_max_g");
   if (m_min > 0.0 && m_min >= m_max)
     cfg.fail("model.m_min_g", "= " + num(m_min) + " must be < model.m_max_g = " +
