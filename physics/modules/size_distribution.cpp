@@ -504,6 +504,13 @@ std::vector<OutputField> SizeDistribution::output_fields() const {
       {"mdot_d", cells + 1, "g s^-1",
        "dust mass flow through the faces, positive outward",
        [this](std::span<const double> y) { return mass_flow(y); }},
+      {"st_bins", cells * nb, "",
+       "Stokes number per mass bin, St(r, m), as the transport and coagulation use it: "
+       "cell by cell, the bins of /grid/m_bins in each (spec §2, §15.1)",
+       [this](std::span<const double> y) {
+         if (porous_) update_porous(y, false, false);
+         return st_;
+       }},
   };
   if (!porous_) return fields;
   // porous: phi(r, m) and the mass-dominating bin's phi and internal density, named as

@@ -90,7 +90,8 @@ std::vector<StaticField> Simulation::static_fields() const {
     fields.push_back({"grid", "m_bins", distribution_->mass_grid().m, "g",
                       "mass of every bin of the size distribution"});
     fields.push_back({"grid", "a_bins", distribution_->bin_radii(), "cm",
-                      "radius of every bin (compact)"});
+                      "radius of every bin (compact, the monomer density of the "
+                      "innermost cell's species)"});
   }
   return fields;
 }

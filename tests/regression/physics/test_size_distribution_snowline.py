@@ -4,7 +4,9 @@ check` accepts the scene and the run completes; the dust budget, with the ice su
 at the snow line, closes to 1e-10 at every snapshot; with drift alone (transport.diffusion
 = false, every flow through the snow face inward) the sublimated mass is f_ice of the mass
 through the snow-line face (booked by the pebble monitor there, spec §8) at every
-snapshot; the silicate cell inside starts with half the icy cells' dust-to-gas ratio."""
+snapshot; the silicate cell inside starts with half the icy cells' dust-to-gas ratio.
+The St of every bin (/snapshots/st_bins) is the mass-dominating bin's St where that bin
+is, and grows as m^(1/3) over the small (Epstein) bins of every cell."""
 
 import os
 
@@ -42,6 +44,18 @@ def main():
     inside = r.r_c < r.r_snow_au
     c.check(inside.any() and np.allclose(z[inside], (1 - f_ice) * z[~inside][0], rtol=1e-12),
             f"Z inside r_snow = (1 - f_ice) Z outside at the start ({z[inside][0]:.4g})")
+    import h5py
+    with h5py.File(out, "r") as f:
+        m_bins = f["grid/m_bins"][:]
+        sigma = f["snapshots/sigma"][-1].reshape(r.r_c.size, m_bins.size)
+        st = f["snapshots/st_bins"][-1].reshape(r.r_c.size, m_bins.size)
+    dominant = st[np.arange(r.r_c.size), np.argmax(sigma, axis=1)]
+    c.check(np.array_equal(dominant, s["St"][-1]),
+            "st_bins at the mass-dominating bin is St, bit for bit")
+    slope = np.log(st[:, 1] / st[:, 0]) / np.log(m_bins[1] / m_bins[0])
+    c.check(np.allclose(slope, 1 / 3, rtol=1e-9),
+            f"St of the smallest bins grows as m^(1/3) (Epstein) in every cell "
+            f"({slope.min():.12f} .. {slope.max():.12f})")
     c.finish()
 
 
