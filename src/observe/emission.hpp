@@ -2,10 +2,12 @@
 //! The radiative transfer of `panoptic observe`, per wavelength and cell: absorption
 //! opacity of the cell's particle kappa_abs(lambda) = 3 Q_abs / (4 a rho_int)
 //! (physics/mie.hpp; porosity by Maxwell-Garnett with vacuum,
-//! physics/optical_constants.hpp), and the emission of a geometrically thin slab at the
-//! gas temperature T(r), seen at inclination i, absorption only (no albedo reduction,
-//! no scattered light):
-//!   I_nu(r) = B_nu(T) (1 - exp(-tau_nu / cos i)),  tau_nu = Sigma_d kappa_abs.
+//! physics/optical_constants.hpp), or of a size distribution the mass-weighted mean of
+//! its bins', kappa_abs = Sum_k sigma_k kappa_abs,k / Sigma_d; and the emission of a
+//! geometrically thin slab at the gas temperature T(r), seen at inclination i,
+//! absorption only (no albedo reduction, no scattered light):
+//!   I_nu(r) = B_nu(T) (1 - exp(-tau_nu / cos i)),  tau_nu = Sigma_d kappa_abs
+//! (= Sum_k sigma_k kappa_abs,k).
 #include <cstddef>
 #include <vector>
 
@@ -25,7 +27,7 @@ struct CellEmission {
   std::size_t n_cells = 0;
   double mu = 1.0;                //!< cos i
   std::vector<double> nu;         //!< frequency of each wavelength [Hz]
-  std::vector<double> kappa_abs;  //!< absorption opacity [cm^2 g^-1]
+  std::vector<double> kappa_abs;  //!< absorption opacity per gram of dust [cm^2 g^-1]
   std::vector<double> tau;        //!< vertical optical depth Sigma_d kappa_abs
   std::vector<double> intensity;  //!< B_nu(T) (1 - exp(-tau / mu)) [Jy arcsec^-2]
   std::vector<double> b_nu;       //!< B_nu(T) [Jy arcsec^-2]

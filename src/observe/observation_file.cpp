@@ -57,20 +57,35 @@ void write_provenance(hid_t root, const Observation& o) {
         {"beam_pa_deg", a.bpa_deg},
         {"beam_area_arcsec2", o.images.beam.area()}})
     h5::set_attr(root, name, value);
+  const bool distribution = !o.particles.bins.empty();
   h5::set_attr(root, "particle_size",
                a.a_cm_given ? "--a-cm " + num(a.a_cm) + " in every cell (phi = 1)"
-                            : std::string("the run's /snapshots/a, phi, rho_int"));
-  h5::set_attr(root, "emission",
-               "absorption only (no scattering): I = B_nu(T) (1 - exp(-tau/cos i)), "
-               "tau = Sigma_d kappa_abs of the mass-dominating particle (one size per "
-               "cell), T = /disk/T of the run; geometrically thin disk");
-  h5::set_attr(root, "opacity",
-               "Mie (Bohren & Huffman 1983 BHMIE, Wiscombe 1980 terms) for x <= 1e4, "
-               "geometric optics above; porosity by Maxwell-Garnett, solid in a vacuum "
-               "matrix (Kataoka et al. 2014 eq. 3); "
-               "inside the snow line silicate, outside observe.outer_species = " +
-                   mat.outer + " (" + mat.rule + ", silicate volume fraction " +
-                   num(mat.f_sil_volume) + ")");
+               : distribution
+                   ? std::string("the run's size distribution: every bin of "
+                                 "/snapshots/sigma holding dust, mass /grid/m_bins, "
+                                 "filling factor /snapshots/phi_bins (1 when "
+                                 "compact); /model/a, phi, rho_int: its "
+                                 "mass-dominating bin")
+                   : std::string("the run's /snapshots/a, phi, rho_int"));
+  h5::set_attr(
+      root, "emission",
+      "absorption only (no scattering): I = B_nu(T) (1 - exp(-tau/cos i)), "
+      "tau = Sigma_d kappa_abs of the " +
+          std::string(distribution ? "size distribution (Sum_k sigma_k kappa_abs,k)"
+                                   : "mass-dominating particle (one size per cell)") +
+          ", T = /disk/T of the run; geometrically thin disk");
+  h5::set_attr(
+      root, "opacity",
+      std::string(distribution ? "of the size distribution: kappa_abs = Sum_k sigma_k "
+                                 "kappa_abs,k / Sigma_d over the bins, each bin's "
+                                 "aggregate (radius a_k, filling factor phi_k) by "
+                               : "") +
+          "Mie (Bohren & Huffman 1983 BHMIE, Wiscombe 1980 terms) for x <= 1e4, "
+          "geometric optics above; porosity by Maxwell-Garnett, solid in a "
+          "vacuum matrix (Kataoka et al. 2014 eq. 3); "
+          "inside the snow line silicate, outside observe.outer_species = " +
+          mat.outer + " (" + mat.rule + ", silicate volume fraction " +
+          num(mat.f_sil_volume) + ")");
   h5::set_attr(root, "config_toml", o.scene_toml);
   h5::set_attr(root, "git_sha", std::string(PANOPTIC_GIT_SHA));
   h5::set_attr(root, "version", std::string(PANOPTIC_VERSION));
@@ -97,16 +112,21 @@ void write_contents(hid_t root, const Observation& o) {
     write_array(g.get(), "T", {hn}, s.T, "K", "dust temperature (= /disk/T of the run)");
     write_array(g.get(), "sigma_d", {hn}, s.sigma_d, "g cm^-2",
                 "dust surface density of the snapshot");
-    write_array(g.get(), "a", {hn}, p.a_cm, "cm", "particle radius used");
+    // a size distribution: the mass-dominating bin's (the opacity is all the bins')
+    const std::string of = p.bins.empty() ? " used" : " of the mass-dominating bin";
+    write_array(g.get(), "a", {hn}, p.a_cm, "cm", "particle radius" + of);
     write_array(g.get(), "phi", {hn}, p.phi, "",
-                "filling factor used: volume fraction of the optical solid, rho_int / "
-                "its density (at most 1)");
-    write_array(g.get(), "rho_int", {hn}, p.rho, "g cm^-3", "internal density used");
+                "filling factor" + of +
+                    ": volume fraction of the optical solid, rho_int / its density (at "
+                    "most 1)");
+    write_array(g.get(), "rho_int", {hn}, p.rho, "g cm^-3", "internal density" + of);
     const std::vector<double> sp(p.inner.begin(), p.inner.end());
     write_array(g.get(), "inner_species", {hn}, sp, "",
                 "1: silicate (inside the snow line), 0: observe.outer_species");
     write_array(g.get(), "kappa_abs", {hl, hn}, e.kappa_abs, "cm^2 g^-1",
-                "absorption opacity per gram of dust");
+                p.bins.empty() ? "absorption opacity per gram of dust"
+                               : "absorption opacity per gram of dust of the size "
+                                 "distribution, Sum_k sigma_k kappa_abs,k / Sigma_d");
     write_array(g.get(), "tau", {hl, hn}, e.tau, "",
                 "vertical optical depth Sigma_d kappa_abs");
     write_array(g.get(), "intensity", {hl, hn}, e.intensity, "Jy arcsec^-2",

@@ -54,7 +54,10 @@ int observe(const ObserveArgs& a) {
   const OpticalMaterials mat = optical_materials(cfg);
   check_wavelengths_covered(mat, a.lambda_mm);
   check_observable(s, a.run_file, a.a_cm_given);
-  const CellParticles particles = cell_particles(s, mat, cfg.flag("snowline.enabled"), a);
+  const MonomerDensities rho0{cfg.real("material.ice_rho0"),
+                              cfg.real("material.sil_rho0")};
+  const CellParticles particles =
+      cell_particles(s, mat, cfg.flag("snowline.enabled"), rho0, a);
   const CellEmission emission = cell_emission(a.lambda_mm, a.incl_deg, s, mat, particles);
   const SkyImages images = sky_images(a, s, emission);
   const SpectralIndex alpha = spectral_index(a.lambda_mm, emission, images);

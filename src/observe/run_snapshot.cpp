@@ -1,9 +1,10 @@
 #include "src/observe/run_snapshot.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
-#include <utility>
+#include <tuple>
 
 #include "src/core/error.hpp"
 #include "src/io/h5.hpp"
@@ -77,35 +78,44 @@ RunSnapshot read_run_snapshot(const std::string& file, double time_yr) {
       best = static_cast<long>(k);
   s.index = best;
   s.time_yr = times[best];
-  // the size distribution (model.kind = "distribution") writes sigma(r, m) and no phi:
-  // its opacities need the whole distribution, not the mass-dominating bin
-  if (h5::exists(snap.get(), "sigma"))
-    throw ConfigError(file +
-                      ": a run of the size distribution (model.kind = \"distribution\"): "
-                      "panoptic observe does not read size distributions yet (issue 35); "
-                      "observe a single-size run of the scene");
   s.sigma_d = row(snap.get(), "sigma_d", best, n, file);
-  if (h5::exists(snap.get(), "a")) {
-    s.a = row(snap.get(), "a", best, n, file);
+  // a single-size run with growth writes its particle's a, phi and rho_int; a size
+  // distribution the mass-dominating bin's a, and phi and rho_int only with porous bins
+  if (h5::exists(snap.get(), "a")) s.a = row(snap.get(), "a", best, n, file);
+  if (h5::exists(snap.get(), "phi")) {
     s.phi = row(snap.get(), "phi", best, n, file);
     s.rho_int = row(snap.get(), "rho_int", best, n, file);
+  }
+  if (h5::exists(snap.get(), "sigma")) {
+    if (!h5::exists(grid.get(), "m_bins"))
+      throw ConfigError(file + ": /snapshots/sigma without /grid/m_bins: damaged file");
+    s.m_bins = h5::read_doubles(grid.get(), "m_bins");
+    const std::size_t width = n * s.m_bins.size();
+    if (width == 0) throw ConfigError(file + ": /grid/m_bins is empty: damaged file");
+    s.sigma_bins = row(snap.get(), "sigma", best, width, file);
+    if (h5::exists(snap.get(), "phi_bins"))
+      s.phi_bins = row(snap.get(), "phi_bins", best, width, file);
   }
   return s;
 }
 
 void check_observable(const RunSnapshot& s, const std::string& file, bool a_cm_given) {
   // a snapshot of a run that failed can hold NaN (its last rows): say so, rather than
-  // write an observation of NaN with exit 0
-  for (const auto& [name, v] : {std::pair{"sigma_d", &s.sigma_d},
-                                {"a", &s.a},
-                                {"phi", &s.phi},
-                                {"rho_int", &s.rho_int},
-                                {"T", &s.T}})
+  // write an observation of NaN with exit 0 (a bin's value names its cell: the bins are
+  // cell by cell, nb of them in each)
+  const std::size_t one = 1, nb = std::max(one, s.m_bins.size());
+  for (const auto& [name, v, per_cell] : {std::tuple{"sigma_d", &s.sigma_d, one},
+                                          {"a", &s.a, one},
+                                          {"phi", &s.phi, one},
+                                          {"rho_int", &s.rho_int, one},
+                                          {"T", &s.T, one},
+                                          {"sigma", &s.sigma_bins, nb},
+                                          {"phi_bins", &s.phi_bins, nb}})
     for (std::size_t i = 0; i < v->size(); ++i)
       if (!std::isfinite((*v)[i]))
         throw ConfigError(file + ": snapshot " + std::to_string(s.index) +
                           " (t = " + num(s.time_yr) + " yr) has " + name + " = " +
-                          num((*v)[i]) + " at r = " + num(s.r_c_au[i]) +
+                          num((*v)[i]) + " at r = " + num(s.r_c_au[i / per_cell]) +
                           " au: not a state to observe (did the run fail? its exit code "
                           "and /solver status say); choose another --time-yr");
   if (s.a.empty() && !a_cm_given)

@@ -3,9 +3,10 @@
 gas, 3 000 yr): the dust budget closes to 1e-10 at every snapshot, /snapshots/sigma holds
 the bins of every cell (n_cells x /grid/m_bins) and sums to sigma_d, and the particles
 grow: the mass-dominating bin (m, a, St) rises from the MRN start by orders of magnitude
-in the inner disk while sigma_d stays near its initial profile. `panoptic observe`, which
-does not read size distributions yet, refuses the run as bad input (exit 2) naming why; a
-scan over two distribution runs (disk.alpha) completes both with closed budgets."""
+in the inner disk while sigma_d stays near its initial profile. `panoptic observe` reads
+the run (its opacities of the distribution: regression.test_observe_distribution); a
+scan over two distribution runs (disk.alpha) completes both with closed budgets, each
+output holding its own run's bins."""
 
 import csv
 import os
@@ -47,9 +48,9 @@ def main():
     change = float(np.max(np.abs(s["sigma_d"][-1] / s["sigma_d"][0] - 1)))
     c.check(change < 0.5, f"sigma_d changes by less than 50 % in 3 000 yr ({change:.2f})")
     p = run_checked([args.exe, "observe", out, "--time-yr", "3000", "--lambda-mm", "1.3",
-                     "-o", f"{args.workdir}/distribution_obs.h5"], expect=None)
-    c.check(p.returncode == 2 and "size distribution" in p.stderr,
-            f"observe refuses a distribution run, exit 2 ({p.returncode}: "
+                     "-o", f"{args.workdir}/distribution_obs.h5", "--overwrite"],
+                    expect=None)
+    c.check(p.returncode == 0, f"observe reads a distribution run, exit 0 ({p.returncode}: "
             f"{p.stderr.strip()[:120]})")
     scan = os.path.join(args.workdir, "distribution_scan.toml")
     with open(scan, "w") as f:
@@ -64,6 +65,20 @@ def main():
             f"the scan completes both distribution runs ({[r['status'] for r in rows]})")
     c.check(all(float(r["budget_error"]) < 1e-10 for r in rows),
             f"their budgets close ({[r['budget_error'] for r in rows]})")
+    # each output is its own run's: its alpha, its bins summing to its sigma_d
+    outputs = []
+    for r in rows:
+        alpha, path = float(r["disk.alpha"]), os.path.join(scan_dir, "runs", r["name"] + ".h5")
+        run_out = load_run(path)
+        with h5py.File(path, "r") as f:
+            bins = f["snapshots/sigma"][-1].reshape(n, nb)
+        outputs.append(bins)
+        c.check(run_out.config["disk"]["alpha"] == alpha and
+                np.allclose(bins.sum(axis=1), run_out.snapshots["sigma_d"][-1], rtol=1e-14,
+                            atol=0),
+                f"scan output {r['name']}: alpha = {alpha:g}, its bins sum to its sigma_d")
+    c.check(len(outputs) == 2 and not np.array_equal(outputs[0], outputs[1]),
+            "the two scan outputs hold different distributions")
     c.finish()
 
 
