@@ -1,6 +1,6 @@
 """`panoptic observe` of a size-distribution run (src/observe/README.md), end to end on
-params/tests/distribution_small.toml (12 cells, 50 bins) run to 1 000 yr, compact and
-with porous bins:
+params/tests/distribution_small.toml (12 cells, 50 bins) run to 1 000 yr, compact, with
+the snow line and with porous bins:
  - the run is observed (exit 0, no longer refused): images finite, the image's flux equal
    to the annuli's and kept by the beam, the `opacity` attribute naming the distribution;
  - the opacity is the mass-weighted mean of the bins': with the optical solid of the
@@ -8,7 +8,8 @@ with porous bins:
    material.ice_rho0), a compact bin is the particle `--a-cm a_k` (/grid/a_bins), so
    one observation per bin gives kappa_k, and Sum_k sigma_k kappa_k / Sigma_d over the
    snapshot's /snapshots/sigma is computed here;
- - /model/a (and, porous, rho_int) is the run's mass-dominating bin's, bit for bit."""
+ - /model/a (and, porous, rho_int) is the run's mass-dominating bin's, bit for bit, with
+   the snow line too (silicate cells of their own monomer density)."""
 import os
 
 import h5py
@@ -88,6 +89,19 @@ def main():
     tau_err = np.max(np.abs(tau / (kappa_bins @ weights.T * sigma_d / weights.sum(axis=1))
                             - 1))
     c.check(tau_err < 1e-12, f"tau = Sum_k sigma_k kappa_k to {tau_err:.1e}")
+
+    # with the snow line: silicate cells inside it (their own monomers), icy outside
+    snow = os.path.join(wd, "distribution_snowline.h5")
+    run(exe, SCENE, snow, SETS + ["snowline.enabled=true"])
+    with h5py.File(snow) as g:
+        a_run = g["snapshots/a"][row]
+    with observe(exe, snow, os.path.join(wd, "snowline_obs.h5"), "--lambda-mm",
+                 lambdas, *WIDE_BEAM) as f:
+        check_images(c, f, "snow line")
+        inner = f["model/inner_species"][()]
+        c.check(np.array_equal(f["model/a"][()], a_run) and 0 < inner.sum() < inner.size,
+                f"snow line ({int(inner.sum())} silicate cells of {inner.size}): /model/a "
+                f"is the run's mass-dominating bin's, bit for bit")
 
     porous = os.path.join(wd, "distribution_porous.h5")
     run(exe, SCENE, porous, SETS + ["porosity.enabled=true"])

@@ -68,7 +68,8 @@ def main():
     # each output is its own run's: its alpha, its bins summing to its sigma_d
     outputs = []
     for r in rows:
-        alpha, path = float(r["disk.alpha"]), os.path.join(scan_dir, "runs", r["name"] + ".h5")
+        alpha = float(r["disk.alpha"])
+        path = os.path.join(scan_dir, "runs", r["name"] + ".h5")
         run_out = load_run(path)
         with h5py.File(path, "r") as f:
             bins = f["snapshots/sigma"][-1].reshape(n, nb)
