@@ -67,6 +67,24 @@ def snapshot_differences(a, b, groups=("snapshots",)):
     return diffs
 
 
+def restarted_from_prev(c, exe, workdir, scene, sets, name, what, groups):
+    """Runs `scene` with `sets` (a checkpoint.every_snapshots among them) to
+    workdir/name.h5, restarts a copy from its mid-run .chk.prev.h5 and checks with `c`
+    that the copy ends identical to the run never stopped in `groups`, with as many
+    snapshots. Returns (the run, the restarted copy, the checkpoint's snapshot index)."""
+    full = f"{workdir}/{name}.h5"
+    panoptic(exe, scene, "-o", full, "--overwrite", sets=sets)
+    again = f"{workdir}/{name}_restarted.h5"
+    copy_run(full, again, files=("output", "prev"))
+    k = checkpoint_attrs(previous_of(again))["snapshot_index"]
+    panoptic(exe, scene, "--restart", previous_of(again), "-o", again, sets=sets)
+    diffs = snapshot_differences(full, again, groups)
+    c.check(not diffs and rows(again) == rows(full),
+            f"{what} restarted from snapshot {k} of {rows(full) - 1}: identical "
+            f"{diffs if diffs else ''}")
+    return full, again, k
+
+
 def lost_rows_explained(ref, out, groups=("snapshots",)):
     """Whether every difference between `ref` and `out` in `groups` is a row the restart
     found lost in the file (its chunk gone after a writer was killed while HDF5 flushed

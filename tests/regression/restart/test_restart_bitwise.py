@@ -16,7 +16,8 @@ from postprocess.reader import open_output  # noqa: E402
 from common import Checks, parse_args
 from restart_common import (EXIT_STOPPED, checkpoint_attrs, checkpoint_of, copy_run,
                             h5diff_snapshots, lost_rows_explained, panoptic, previous_of,
-                            row_digests, rows, snapshot_differences, solver_attrs)
+                            restarted_from_prev, row_digests, rows, snapshot_differences,
+                            solver_attrs)
 
 YR = 3.156e7  # s, src/core/units.hpp
 SCENE = "params/tests/restart.toml"  # transport alone: short runs
@@ -156,37 +157,26 @@ def main():
             f"is found, written as NaN, named on stderr and in the root attribute "
             f"restarts; every other row identical ({lost or 'not so'})")
 
-    def restarted_from_prev(scene, sets, name, what):
-        """Runs `scene`, restarts a copy from its mid-run .chk.prev.h5 and checks that
-        the copy ends identical to the run never stopped."""
-        full = f"{w}/{name}.h5"
-        panoptic(args.exe, scene, "-o", full, "--overwrite", sets=sets)
-        again = f"{w}/{name}_restarted.h5"
-        copy_run(full, again, files=("output", "prev"))
-        k = checkpoint_attrs(previous_of(again))["snapshot_index"]
-        panoptic(args.exe, scene, "--restart", previous_of(again), "-o", again, sets=sets)
-        diffs = snapshot_differences(full, again, MID_RUN_GROUPS)
-        c.check(not diffs and rows(again) == rows(full),
-                f"{what} restarted from snapshot {k} of {rows(full) - 1}: identical "
-                f"{diffs if diffs else ''}")
+    def from_prev(scene, sets, name, what):
+        restarted_from_prev(c, args.exe, w, scene, sets, name, what, MID_RUN_GROUPS)
 
     # Evolving gas: two variables per cell and one more booked mass.
-    restarted_from_prev("params/tests/lbp_viscous.toml",
-                        ["grid.n_cells=100", "output.times_yr=[1e3, 3e3, 1e4, 3e4, 1e5]",
-                         "checkpoint.every_snapshots=2"],
-                        "gas", "evolving gas (sigma_d, sigma_g per cell)")
+    from_prev("params/tests/lbp_viscous.toml",
+              ["grid.n_cells=100", "output.times_yr=[1e3, 3e3, 1e4, 3e4, 1e5]",
+               "checkpoint.every_snapshots=2"],
+              "gas", "evolving gas (sigma_d, sigma_g per cell)")
     # The full model of params/fiducial.toml: growth and porosity (sigma_d, q_m, q_phi per
     # cell), snow-line sublimation, planetesimals, /timeseries.
     growth_sets = ["grid.n_cells=40", "output.t_end_yr=1e3", "output.t_first_yr=10.0",
                    "output.n_snapshots=8", "checkpoint.every_snapshots=3"]
-    restarted_from_prev(FIDUCIAL, growth_sets, "growth", "growth model")
+    from_prev(FIDUCIAL, growth_sets, "growth", "growth model")
     # ... on evolving gas: the particle laws' eta and v_g are set from the gas at every
     # snapshot (Simulation::refresh_local_gas); the restart sets them from the
     # checkpoint's state, as the run never stopped did at that snapshot
-    restarted_from_prev(FIDUCIAL,
-                        growth_sets[:1] + ["gas.evolve=true", "output.t_end_yr=3e4"] +
-                        growth_sets[2:],
-                        "growth_gas", "growth model on evolving gas")
+    from_prev(FIDUCIAL,
+              growth_sets[:1] + ["gas.evolve=true", "output.t_end_yr=3e4"] +
+              growth_sets[2:],
+              "growth_gas", "growth model on evolving gas")
     # ... and a run of it cut at a snapshot, then continued to the end: /timeseries and
     # /summary as well as /snapshots equal the uninterrupted run's
     g_times = [float(t) for t in np.geomspace(10.0, 1e3, 8)]
