@@ -15,7 +15,6 @@ import h5py
 import numpy as np
 
 M_EARTH = 5.9722e27  # [g]
-AU = 1.495978707e13  # [cm]
 
 
 def open_run(path):
@@ -50,7 +49,8 @@ def density_range(f, r_au, m_lo=1.0, m_hi=1e10, r_lo=3.0, r_hi=10.0):
 def report(path):
     with open_run(path) as f:
         s = f["snapshots"]
-        r_au = f["grid/r_c"][:] / AU
+        r_au = f["grid/r_c"][:]  # [au] (its units attribute)
+        assert f["grid/r_c"].attrs["units"] in (b"au", "au")
         t = s["time"][:]
         st = s["St"][:]
         kind = "distribution" if "sigma" in s else "single size"
@@ -61,7 +61,7 @@ def report(path):
         for k in range(len(t)):
             big = np.where(st[k] >= 10.0)[0]
             front = f"{r_au[big.max()]:.2f}" if big.size else "-"
-            m_grid = float(np.sum(s["sigma_d"][k] * f["grid/area"][:])) / M_EARTH
+            m_grid = float(s["m_dust"][k]) / M_EARTH
             m_out = float(s["m_out_inner"][k]) / M_EARTH
             print(f"{t[k]:10.4g} {front:>15} {st[k].max():9.3g} {m_grid:9.3f} {m_out:12.3f}")
         rho, what = density_range(f, r_au)
