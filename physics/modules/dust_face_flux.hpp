@@ -77,6 +77,16 @@ class DustCarrier {
   virtual double mass_unit() const = 0;
 };
 
+//! x/y with the derivative (x' - (x/y) y')/y: no y^2, which underflows for |y| < 1e-154
+//! (AD's quotient rule divides by y^2).
+inline double stable_ratio(double x, double y) { return x / y; }
+template <class D>
+Eigen::AutoDiffScalar<D> stable_ratio(const Eigen::AutoDiffScalar<D>& x,
+                                      const Eigen::AutoDiffScalar<D>& y) {
+  const double r = x.value() / y.value();
+  return Eigen::AutoDiffScalar<D>(r, (x.derivatives() - r * y.derivatives()) / y.value());
+}
+
 class DustFaceFlux {
  public:
   //! `viscous` is null for static gas.
@@ -181,13 +191,18 @@ class DustFaceFlux {
           2.0 * units::kPi * grid_.r_c(from_left ? f : f - 1) * (from_left ? qb : qa);
       const double q_far_r = two_pi_rc_[far] * q_far;
       const T a = q_up - q_far_r, b = q_down - q_up;
-      if (value_of(a) * value_of(b) > 0.0) {
-        const T ab = a + b;
-        out += v * (a * b / ab);
+      if ((value_of(a) > 0.0) == (value_of(b) > 0.0) && value_of(a) != 0.0 &&
+          value_of(b) != 0.0) {
+        // ab/(a + b) as a b/(a + b), the ratio in (0, 1) first: a nearly empty bin of a
+        // size distribution has differences of ~1e-170, whose product and square
+        // underflow (0/0 in the derivative of a b/(a + b))
+        const T sum = a + b;
+        const T share = stable_ratio(b, sum);
+        out += v * (a * share);
         // d(face value)/d q_far = -(1/2) d psi/d a = -b^2/(a + b)^2
         if (d_far) {
-          const double bv = value_of(b), abv = value_of(ab);
-          *d_far = -value_of(v) * bv * bv / (abv * abv) * two_pi_rc_[far];
+          const double sv = value_of(share);
+          *d_far = -value_of(v) * sv * sv * two_pi_rc_[far];
         }
       }
     }
