@@ -41,8 +41,9 @@
 //! carry their dust unchanged (no condensation, as DustTransport). The Jacobian of these
 //! flows is the same AD of the face flow, mapped to the rows that receive it.
 //!
-//! Planetesimal formation per bin: physics/modules/bin_planetesimals.hpp. Not carried yet
-//! (refused by src/model/scene_validation.cpp): bouncing.
+//! Planetesimal formation per bin: physics/modules/bin_planetesimals.hpp; erosion on the
+//! pairs of bins: physics/coagulation/cell_coefficients.hpp. Not carried (refused by
+//! src/model/scene_validation.cpp): bouncing.
 #include <span>
 #include <string>
 #include <vector>

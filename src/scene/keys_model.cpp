@@ -15,8 +15,9 @@ std::vector<KeySpec> model_keys() {
              "single_size = the mass-dominating particle of each cell (spec §2-§7); "
              "distribution = the size distribution of each cell on a log-spaced mass "
              "grid, coagulated by the Smoluchowski equation and every bin transported "
-             "with its own St (spec §15; compact or porous, with the snow line and "
-             "planetesimals per bin; no erosion or bouncing yet: params/README.md)"),
+             "with its own St (spec §15; compact or porous, with the snow line, "
+             "planetesimals per bin and Krijt et al. 2015 erosion on unequal pairs; no "
+             "bouncing: params/README.md)"),
       // > 1/log10(2) = 3.32: the two-bin split of a sticking pair needs a bin ratio
       // below 2 (physics/coagulation/mass_grid.hpp)
       when({distribution()},
