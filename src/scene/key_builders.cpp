@@ -86,7 +86,7 @@ KeySpec real_table(std::string key, std::string def, std::string unit, std::stri
 }
 
 UsedWhen is(std::string key, std::vector<std::string> values) {
-  return UsedWhen{std::move(key), std::move(values)};
+  return UsedWhen{std::move(key), std::move(values), {}};
 }
 
 UsedWhen one_of(std::string key, std::vector<std::string> names) {
@@ -98,6 +98,11 @@ UsedWhen growth_on() { return is("growth.enabled", {"true"}); }
 UsedWhen disk_model(const std::string& m) { return one_of("disk.model", {m}); }
 UsedWhen dust_init(const std::string& i) { return one_of("dust.init", {i}); }
 UsedWhen single_size() { return one_of("model.kind", {"single_size"}); }
+UsedWhen distribution() { return one_of("model.kind", {"distribution"}); }
+UsedWhen either(UsedWhen first, std::vector<UsedWhen> alternatives) {
+  first.or_else = std::move(alternatives);
+  return first;
+}
 UsedWhen erosion(std::vector<std::string> models) {
   return one_of("erosion.model", std::move(models));
 }

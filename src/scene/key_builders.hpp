@@ -51,6 +51,10 @@ UsedWhen disk_model(const std::string& m);
 UsedWhen dust_init(const std::string& i);
 //! model.kind = "single_size"
 UsedWhen single_size();
+//! model.kind = "distribution"
+UsedWhen distribution();
+//! `first`, or else any of `alternatives` (UsedWhen::or_else)
+UsedWhen either(UsedWhen first, std::vector<UsedWhen> alternatives);
 //! erosion.model is one of `models`
 UsedWhen erosion(std::vector<std::string> models);
 //! planetesimals.si is one of `models`

@@ -71,7 +71,11 @@ std::string fix_text(const KeySpec& spec) {
 std::string condition_text(const UsedWhen& c) {
   std::string out = c.key + " = ";
   for (size_t i = 0; i < c.values.size(); ++i) out += (i ? " or " : "") + c.values[i];
-  return out;
+  if (c.or_else.empty()) return out;
+  // in parentheses: the texts are joined with " and " (a warning's fix, the reference)
+  for (const UsedWhen& alternative : c.or_else)
+    out += " or " + condition_text(alternative);
+  return "(" + out + ")";
 }
 
 }  // namespace panoptic::scene_detail

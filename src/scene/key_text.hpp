@@ -16,7 +16,8 @@ std::string unit_suffix(const KeySpec& spec);
 std::string type_text(KeyType type);
 //! The generic fix: what to write instead.
 std::string fix_text(const KeySpec& spec);
-//! "erosion.model = \"halt\" or \"balance\""
+//! "erosion.model = \"halt\" or \"balance\"", with alternatives (UsedWhen::or_else)
+//! "(erosion.model = \"balance\" or model.kind = \"distribution\")"
 std::string condition_text(const UsedWhen& c);
 
 }  // namespace panoptic::scene_detail

@@ -88,7 +88,8 @@ std::vector<KeySpec> erosion_keys() {
                 "balance: mass fraction of small projectiles (§5.2)", 0.0, false, 1.0,
                 true)),
       // read by balance (single size) and by the distribution's pairs (either model)
-      when({growth_on(), erosion({"halt", "balance"})},
+      when({growth_on(), erosion({"halt", "balance"}),
+            either(distribution(), {erosion({"balance"})})},
            real("erosion.eps_eros", "1.0", "",
                 "mass eroded per projectile mass: balance (§5.2), and every model in the "
                 "distribution (§15.2: < 10 there)",

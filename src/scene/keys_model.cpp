@@ -4,10 +4,6 @@
 
 namespace panoptic::scene_detail {
 
-namespace {
-UsedWhen distribution() { return one_of("model.kind", {"distribution"}); }
-}  // namespace
-
 // [model] spec §15: one particle per cell, or the whole size distribution
 std::vector<KeySpec> model_keys() {
   return {

@@ -11,11 +11,16 @@ namespace panoptic {
 
 enum class KeyType { kReal, kInt, kBool, kString, kRealList };
 
-//! A condition under which a run reads a key: the switch `key` holds one of `values`.
+//! A condition under which a run reads a key: the switch `key` holds one of `values`, or
+//! one of the alternatives `or_else` holds.
 struct UsedWhen {
   std::string key;  //!< the switch, "disk.model"
   //! its values that use the key, as canonical TOML literals: "\"lbp\"", "true", "[]"
   std::vector<std::string> values;
+  //! other switches that meet the condition instead (empty: none): erosion.eps_eros is
+  //! read in the distribution mode with any erosion model, in the single-size model
+  //! with erosion.model = "balance" only
+  std::vector<UsedWhen> or_else;
 };
 
 //! One documented scene key. The schema is the single source of truth for what a scene

@@ -15,6 +15,8 @@ bool is_switch(std::string_view key) {
   for (const KeySpec& spec : scene_keys()) {
     for (const UsedWhen& c : spec.used_when) {
       if (c.key == key) return true;
+      for (const UsedWhen& alternative : c.or_else)
+        if (alternative.key == key) return true;
     }
   }
   return false;

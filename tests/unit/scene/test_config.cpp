@@ -819,6 +819,36 @@ TEST(UnusedKeys, ErosionKeyOfAnotherModeOrWithGrowthOff) {
                          "set erosion.model = \"halt\" or \"balance\" to use it"});
 }
 
+TEST(UnusedKeys, EpsErosOfHaltInTheSingleSizeModel) {
+  // erosion.eps_eros: balance of the single-size model (spec §5.2) and every erosion
+  // model of the distribution's pairs (§15.2) read it; halt of the single-size model not
+  const std::string halt =
+      "[growth]\nenabled = true\n[erosion]\nmodel = \"halt\"\neps_eros = 0.5\n";
+  const auto w = unused(halt);
+  ASSERT_EQ(w.size(), 1u);
+  expect_parts(w[0],
+               {"erosion.eps_eros = 0.5 (scene.toml:5:1)",
+                "is not used: model.kind = \"single_size\", erosion.model = \"halt\"",
+                "set (model.kind = \"distribution\" or erosion.model = \"balance\") "
+                "to use it"});
+  EXPECT_TRUE(unused(halt, {"model.kind=distribution"}).empty());
+  EXPECT_TRUE(unused(halt, {"erosion.model=balance"}).empty());
+  // with erosion off, the switch that fails both conditions is named once
+  const auto none = unused(halt, {"erosion.model=none"});
+  ASSERT_EQ(none.size(), 1u);
+  expect_parts(none[0], {"is not used: erosion.model = \"none\", model.kind = "
+                         "\"single_size\"; set erosion.model = \"halt\" or \"balance\" "
+                         "and (model.kind"});
+  // the resolved scene marks it, and re-runs without the warning
+  const Config cfg = load(halt);
+  const std::string resolved = cfg.resolved_toml();
+  EXPECT_NE(resolved.find("eps_eros = 0.5"), std::string::npos);
+  EXPECT_NE(resolved.find("(not read: model.kind = \"single_size\", erosion.model = "
+                          "\"halt\")"),
+            std::string::npos);
+  EXPECT_TRUE(unused_key_warnings(load_scene_text(resolved, "resolved.toml")).empty());
+}
+
 TEST(UnusedKeys, RingKeysWithoutTheRing) {
   const auto w = unused("[dust]\nring_r_au = 20\n");
   ASSERT_EQ(w.size(), 1u);
@@ -871,6 +901,11 @@ TEST(UnusedKeys, EveryConditionOfTheSchemaCanHoldAndFail) {
     for (const UsedWhen& c : spec.used_when) {
       ASSERT_TRUE(specs.count(c.key)) << spec.key << ": condition on unknown " << c.key;
       ASSERT_FALSE(c.values.empty()) << spec.key;
+      for (const UsedWhen& alternative : c.or_else) {
+        ASSERT_TRUE(specs.count(alternative.key))
+            << spec.key << ": alternative on unknown " << alternative.key;
+        ASSERT_FALSE(alternative.values.empty()) << spec.key;
+      }
       met.push_back(c.key + "=" + c.values.front());
     }
     if (spec.used_when.empty()) continue;
