@@ -6,12 +6,14 @@
 //! local gas and the monomer species. Used by the distribution mode on the grid
 //! (physics/modules/size_distribution.cpp), the tests and
 //! tests/bench/bench_coagulation.cpp.
+#include <algorithm>
 #include <cmath>
 #include <span>
 #include <vector>
 
 #include "disk/local_gas.hpp"
 #include "physics/coagulation/collision_kernel.hpp"
+#include "physics/coagulation/pair_speed_evaluator.hpp"
 #include "physics/coagulation/porosity.hpp"
 #include "physics/coagulation/smoluchowski.hpp"
 #include "physics/compaction.hpp"
@@ -67,20 +69,65 @@ inline FragmentationModel fragmentation_model(const GrowthOptions& o) {
   return f;
 }
 
+//! What cell_coefficients keeps from call to call for one cell: its buffers, the pair
+//! speeds' per-pair Brownian terms (PairSpeedEvaluator, rebuilt when the gas temperature
+//! changes) and the product rules' mass terms of every pair of the grid.
+struct CoefficientWorkspace {
+  PairSpeedEvaluator speeds;
+  std::vector<double> phi, u;        //!< per bin [-]
+  BinProperties bins;                //!< per bin, at phi
+  std::vector<BinSpeedTerms> terms;  //!< per bin, at St
+  std::vector<double> dv;            //!< N x N [cm s^-1]
+  //! Jacobian: the perturbed bin's radius, St and pair speeds (at (i, j): bin i
+  //! perturbed) and the targets' compression slopes, plain and perturbed
+  std::vector<double> a_step, st_step, dv_step, s_c, s_c_step;
+  std::vector<PairMasses> masses;  //!< at (i, j), j <= i: pair_masses(m_i, m_j)
+  std::vector<double> masses_of;   //!< the grid `masses` was built for [g]
+
+  //! The mass terms of every pair of `m` (kept while the grid stays the same).
+  void set_grid(std::span<const double> m) {
+    if (std::ranges::equal(m, masses_of)) return;
+    const std::size_t n = m.size();
+    masses_of.assign(m.begin(), m.end());
+    masses.assign(n * n, PairMasses{});
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j <= i; ++j) masses[i * n + j] = pair_masses(m[i], m[j]);
+  }
+};
+
+//! Empties every matrix of c, keeping its storage for reuse.
+inline void clear_coefficients(CellCoefficients& c) {
+  for (std::vector<double>* v :
+       {&c.kernel, &c.p_frag, &c.ln_u_ratio, &c.ln_phi_floor, &c.relax_rate, &c.dlnk_dlnu,
+        &c.dp_dlnu, &c.dd_dlnu_i, &c.dd_dlnu_j})
+    v->clear();
+}
+
 //! Coefficients of the cell with bin masses sigma and, for porous aggregates, psi (empty:
 //! compact, phi = 1). A bin without mass (psi = 0) is given phi = 1: it enters only the
 //! Jacobian, through the rate of its first collisions. With `derivatives` (porous, for
 //! the Jacobian) also d ln K_ij, d p_ij and d d_ij by ln u of each partner, by forward
 //! differences of 1e-6 in ln u (about twice the cost; the right-hand side needs none).
+//! A caller that evaluates a cell repeatedly passes its `workspace` and the cell's
+//! previous coefficients as `c` (moved in): their storage is reused, and nothing is
+//! allocated once the sizes are set.
 inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
                                           std::span<const double> sigma,
                                           std::span<const double> psi,
                                           const LocalGas& gas, const CellModel& model,
-                                          bool derivatives = false) {
+                                          bool derivatives = false,
+                                          CoefficientWorkspace* workspace = nullptr,
+                                          CellCoefficients c = {}) {
+  CoefficientWorkspace local;
+  CoefficientWorkspace& ws = workspace != nullptr ? *workspace : local;
   const MassGrid& grid = engine.grid();
   const int n = grid.size();
+  const std::size_t nn = static_cast<std::size_t>(n) * n;
   const bool porous = !psi.empty();
-  std::vector<double> phi(n, 1.0), u(n, 1.0);
+  std::vector<double>& phi = ws.phi;
+  std::vector<double>& u = ws.u;
+  phi.assign(n, 1.0);
+  u.assign(n, 1.0);
   if (porous)
     for (int k = 0; k < n; ++k)
       if (sigma[k] > 0.0 && psi[k] > 0.0) {
@@ -89,54 +136,65 @@ inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
       }
   const Species& sp = model.species;
   const GrowthOptions& o = model.growth;
-  const BinProperties bins = bin_properties(grid, phi, sp.rho0, gas, o.drag);
-  const std::vector<double> dv = pair_speeds(grid, bins, gas, o.turbulence);
-  CellCoefficients c;
-  c.kernel = collision_kernel(bins.a, bins.h_d, [&](int i, int j) {
-    return dv[static_cast<std::size_t>(i) * n + j];
-  });
-  if (model.outcomes.fragmentation || model.outcomes.cratering)
-    c.p_frag = fragmentation_probabilities(engine, dv, model.outcomes);
-  if (!porous) return c;
-
+  const OutcomeSwitches& s = model.outcomes;
   const auto& m = grid.m;
+  bin_properties(grid, phi, sp.rho0, gas, o.drag, ws.bins);
+  const BinProperties& bins = ws.bins;
+  ws.speeds.set_gas(gas, m, o.turbulence);
+  ws.terms.resize(n);
+  for (int k = 0; k < n; ++k) ws.terms[k] = ws.speeds.bin_terms(bins.St[k]);
+  clear_coefficients(c);
+  // the pair speeds (spec §3), the kernel (spec §15.2) and the outcome probabilities
+  // (pair_loss_probability: fragmentation and cratering, spec §15.2)
+  const bool losses = s.fragmentation || s.cratering;
+  ws.dv.resize(nn);
+  c.kernel.resize(nn);
+  if (losses) c.p_frag.resize(nn);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      const std::size_t ij = static_cast<std::size_t>(i) * n + j;
+      const std::size_t ji = static_cast<std::size_t>(j) * n + i;
+      const double v = ws.speeds.dv(ws.terms[i], ws.terms[j], i, j);
+      ws.dv[ij] = ws.dv[ji] = v;
+      c.kernel[ij] = c.kernel[ji] =
+          pair_kernel(bins.a[i], bins.a[j], bins.h_d[i], bins.h_d[j], v);
+      if (losses)
+        c.p_frag[ij] = c.p_frag[ji] =
+            pair_loss_probability(v, i - j > engine.crater_bins(), s);
+    }
+  if (!porous) return c;
+  const std::vector<double>& dv = ws.dv;
+
   // for the Jacobian: d ln K_ij / d ln u_i, a forward difference in bin i's filling
   // factor through its radius, St, h_d and every pair speed (the kernel is the part of
   // the coefficients that moves most with the porosity)
   const double step = 1e-6;
-  // the perturbed bin's pair speeds (at (i, j): bin i perturbed), radius and St, for the
-  // product porosity's derivatives below
-  std::vector<double> dv_step, a_step, st_step;
   if (derivatives) {
-    c.dlnk_dlnu.resize(static_cast<std::size_t>(n) * n);
-    if (!c.p_frag.empty()) c.dp_dlnu.assign(static_cast<std::size_t>(n) * n, 0.0);
-    dv_step.resize(static_cast<std::size_t>(n) * n);
-    a_step.resize(n);
-    st_step.resize(n);
+    c.dlnk_dlnu.resize(nn);
+    if (losses) c.dp_dlnu.assign(nn, 0.0);
+    ws.dv_step.resize(nn);
+    ws.a_step.resize(n);
+    ws.st_step.resize(n);
   }
   for (int i = 0; derivatives && i < n; ++i) {
     const double phi_i = phi[i] * std::exp(-step);
     const double a_i = radius(m[i], phi_i, sp.rho0);
     const double st_i = stokes_number_of_radius(a_i, phi_i, sp.rho0, gas, o.drag);
     const double h_i = dust_scale_height(st_i, gas);
-    a_step[i] = a_i;
-    st_step[i] = st_i;
+    const BinSpeedTerms terms_i = ws.speeds.bin_terms(st_i);
+    ws.a_step[i] = a_i;
+    ws.st_step[i] = st_i;
     for (int j = 0; j < n; ++j) {
       const bool self = j == i;
-      const double a_j = self ? a_i : bins.a[j];
-      const double st_j = self ? st_i : bins.St[j];
-      const double h_j = self ? h_i : bins.h_d[j];
-      const double v = dv_total(st_i, st_j, m[i], m[j], gas, o.turbulence);  // spec §3
-      const double sum = a_i + a_j;
-      const double k = units::kPi * sum * sum * v /
-                       std::sqrt(2.0 * units::kPi * (h_i * h_i + h_j * h_j));  // §15.2
+      const double v = ws.speeds.dv(terms_i, self ? terms_i : ws.terms[j], i, j);  // §3
+      const double k = pair_kernel(a_i, self ? a_i : bins.a[j], h_i,
+                                   self ? h_i : bins.h_d[j], v);  // spec §15.2
       const std::size_t ij = static_cast<std::size_t>(i) * n + j;
-      dv_step[ij] = v;
+      ws.dv_step[ij] = v;
       c.dlnk_dlnu[ij] = std::log(k / c.kernel[ij]) / step;
-      if (!c.p_frag.empty()) {
+      if (losses) {
         const int hi = i > j ? i : j, lo = i > j ? j : i;
         const bool crater = hi - lo > engine.crater_bins();
-        const OutcomeSwitches& s = model.outcomes;
         // the erosion step (width w_eros ~ 0.01 in dv/v_eros) by the chain rule through
         // the difference of dv: its own forward difference would carry an error of
         // step / w^2 (4e-5 of the Jacobian on the test's state)
@@ -148,37 +206,43 @@ inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
       }
     }
   }
-  c.ln_u_ratio.assign(static_cast<std::size_t>(n) * n, 0.0);
+  c.ln_u_ratio.assign(nn, 0.0);
   if (derivatives) {
-    c.dd_dlnu_i.assign(static_cast<std::size_t>(n) * n, 0.0);
-    c.dd_dlnu_j.assign(static_cast<std::size_t>(n) * n, 0.0);
+    c.dd_dlnu_i.assign(nn, 0.0);
+    c.dd_dlnu_j.assign(nn, 0.0);
+  }
+  ws.set_grid(m);
+  ws.s_c.resize(n);
+  ws.s_c_step.resize(n);
+  for (int i = 0; i < n; ++i) {
+    ws.s_c[i] = compression_slope_of_target(bins.a[i], bins.St[i], gas, o.drag);
+    ws.s_c_step[i] = derivatives ? compression_slope_of_target(ws.a_step[i],
+                                                               ws.st_step[i], gas, o.drag)
+                                 : ws.s_c[i];
   }
   const double e_threshold = 3.0 * o.b * sp.e_roll;  // spec §4.2
   for (int i = 0; i < n; ++i) {
-    const double s_c = compression_slope_of_target(bins.a[i], bins.St[i], gas, o.drag);
-    const double s_c_step =
-        derivatives ? compression_slope_of_target(a_step[i], st_step[i], gas, o.drag)
-                    : s_c;
+    const double s_c = ws.s_c[i];
     for (int j = 0; j <= i; ++j) {
       const std::size_t ij = static_cast<std::size_t>(i) * n + j;
-      const double e_imp = impact_energy(m[i], m[j], dv[ij]);  // spec §15.3
-      c.ln_u_ratio[ij] =
-          product_ln_u_ratio(m[i], u[i], m[j], u[j], e_imp, e_threshold, s_c);
+      const PairMasses& pm = ws.masses[ij];
+      const double e_imp = impact_energy(pm, dv[ij]);  // spec §15.3
+      c.ln_u_ratio[ij] = product_ln_u_ratio(pm, u[i], u[j], e_imp, e_threshold, s_c);
       if (!derivatives) continue;
       // for the Jacobian: d by ln u_i and ln u_j, through the volumes, the impact
       // energy and (u_i) the target's compression slope
       const double ue = std::exp(step);
-      const double e_i = impact_energy(m[i], m[j], dv_step[ij]);
+      const double e_i = impact_energy(pm, ws.dv_step[ij]);
       const double u_j_step = i == j ? u[j] * ue : u[j];
-      c.dd_dlnu_i[ij] = (product_ln_u_ratio(m[i], u[i] * ue, m[j], u_j_step, e_i,
-                                            e_threshold, s_c_step) -
-                         c.ln_u_ratio[ij]) /
-                        step;
+      c.dd_dlnu_i[ij] =
+          (product_ln_u_ratio(pm, u[i] * ue, u_j_step, e_i, e_threshold, ws.s_c_step[i]) -
+           c.ln_u_ratio[ij]) /
+          step;
       if (i != j) {
         const double e_j =
-            impact_energy(m[i], m[j], dv_step[static_cast<std::size_t>(j) * n + i]);
+            impact_energy(pm, ws.dv_step[static_cast<std::size_t>(j) * n + i]);
         c.dd_dlnu_j[ij] =
-            (product_ln_u_ratio(m[i], u[i], m[j], u[j] * ue, e_j, e_threshold, s_c) -
+            (product_ln_u_ratio(pm, u[i], u[j] * ue, e_j, e_threshold, s_c) -
              c.ln_u_ratio[ij]) /
             step;
       }

@@ -32,11 +32,10 @@ struct BinProperties {
   std::vector<double> h_d;  //!< dust scale height [cm]
 };
 
-//! The bins' properties from their filling factors phi_k (spec §2 laws per bin).
-inline BinProperties bin_properties(const MassGrid& grid, std::span<const double> phi,
-                                    double rho0, const LocalGas& gas,
-                                    DragLaw law = DragLaw::kStokesRe) {
-  BinProperties b;
+//! The bins' properties from their filling factors phi_k (spec §2 laws per bin), into b
+//! (its buffers reused).
+inline void bin_properties(const MassGrid& grid, std::span<const double> phi, double rho0,
+                           const LocalGas& gas, DragLaw law, BinProperties& b) {
   const int n = grid.size();
   b.a.resize(n);
   b.St.resize(n);
@@ -46,6 +45,14 @@ inline BinProperties bin_properties(const MassGrid& grid, std::span<const double
     b.St[k] = stokes_number_of_radius(b.a[k], phi[k], rho0, gas, law);  // spec §2
     b.h_d[k] = dust_scale_height(b.St[k], gas);                         // spec §2
   }
+}
+
+//! The bins' properties from their filling factors phi_k (spec §2 laws per bin).
+inline BinProperties bin_properties(const MassGrid& grid, std::span<const double> phi,
+                                    double rho0, const LocalGas& gas,
+                                    DragLaw law = DragLaw::kStokesRe) {
+  BinProperties b;
+  bin_properties(grid, phi, rho0, gas, law, b);
   return b;
 }
 
@@ -66,8 +73,16 @@ inline std::vector<double> pair_speeds(const MassGrid& grid, const BinProperties
   return dv;
 }
 
-//! K_ij = pi (a_i + a_j)^2 dv_ij / sqrt(2 pi (h_i^2 + h_j^2)) (spec §15.2) [cm^2 s^-1],
-//! N x N row-major; dv(i, j) [cm s^-1] from the caller.
+//! K_ij = pi (a_i + a_j)^2 dv_ij / sqrt(2 pi (h_i^2 + h_j^2)) of one pair (spec §15.2)
+//! [cm^2 s^-1]; a [cm], h [cm], dv [cm s^-1].
+inline double pair_kernel(double a_i, double a_j, double h_i, double h_j, double dv) {
+  const double sum = a_i + a_j;
+  const double h2 = h_i * h_i + h_j * h_j;
+  return units::kPi * sum * sum * dv / std::sqrt(2.0 * units::kPi * h2);
+}
+
+//! K_ij of every pair (pair_kernel), N x N row-major [cm^2 s^-1]; dv(i, j) [cm s^-1]
+//! from the caller.
 template <class PairSpeed>
 std::vector<double> collision_kernel(std::span<const double> a,
                                      std::span<const double> h_d, PairSpeed dv) {
@@ -75,16 +90,16 @@ std::vector<double> collision_kernel(std::span<const double> a,
   std::vector<double> k(n * n);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j <= i; ++j) {
-      const double sum = a[i] + a[j];
-      const double h2 = h_d[i] * h_d[i] + h_d[j] * h_d[j];
-      const double v = units::kPi * sum * sum *
-                       dv(static_cast<int>(i), static_cast<int>(j)) /
-                       std::sqrt(2.0 * units::kPi * h2);
+      const double v = pair_kernel(a[i], a[j], h_d[i], h_d[j],
+                                   dv(static_cast<int>(i), static_cast<int>(j)));
       k[i * n + j] = v;
       k[j * n + i] = v;
     }
   return k;
 }
+
+//! x above which exp(-x) is 0 in double (e^-746 = 1.1e-324) [-].
+inline constexpr double kExpUnderflow = 746.0;
 
 //! Probability that a pair at mean speed dv fragments, (1 + 3x/2) exp(-3x/2), x =
 //! (v_frag/dv)^2 (DustPy `pfrag`, a Maxwell-Boltzmann speed distribution) [-]; 0 at dv =
@@ -92,6 +107,9 @@ std::vector<double> collision_kernel(std::span<const double> a,
 inline double fragmentation_probability(double dv, double v_frag) {
   if (dv <= 0.0) return 0.0;
   const double x = 1.5 * (v_frag / dv) * (v_frag / dv);
+  // exp(-x) < 2.4e-324, half the least subnormal, rounds to 0 exactly: the same bits
+  // without libm's slow underflow path (most pairs of a cell meet far below v_frag)
+  if (x > kExpUnderflow) return 0.0;
   return (1.0 + x) * std::exp(-x);
 }
 

@@ -35,24 +35,41 @@ namespace panoptic::physics::coagulation {
 //! Okuzumi et al.'s (2012) cap on V_void / V_2 [-].
 inline constexpr double kVoidCap = 6.94;
 
-//! ln(u_p / u_i) of hit-and-stick: V_p = V_1 + V_2 + V_void (above) [-]; m [g], u =
-//! <1/phi> [-]. Written without cancelling terms: log1p((W_j + W_void)/W_i) -
-//! log1p(m_j/m_i).
-inline double ln_u_ratio_hit_and_stick(double m_i, double u_i, double m_j, double u_j) {
-  const double w_i = m_i * u_i, w_j = m_j * u_j;
+//! The terms of a pair's product rules that depend on its masses only (target m_i,
+//! projectile m_j [g]): a mass grid's pairs keep them from call to call.
+struct PairMasses {
+  double m_i = 0.0, m_j = 0.0;  //!< [g]
+  double ln1p_ratio = 0.0;      //!< ln(1 + m_j/m_i) = ln(m_p/m_i) [-]
+  double frac_j = 0.0;          //!< m_j / m_p [-]
+  double half_mu = 0.0;         //!< mu/2 = m_i m_j / (2 (m_i + m_j)) [g]
+};
+
+inline PairMasses pair_masses(double m_i, double m_j) {
+  return {m_i, m_j, std::log1p(m_j / m_i), m_j / (m_i + m_j),
+          0.5 * (m_i * m_j / (m_i + m_j))};
+}
+
+//! ln(u_p / u_i) of hit-and-stick: V_p = V_1 + V_2 + V_void (above) [-]; u = <1/phi>
+//! [-]. Written without cancelling terms: log1p((W_j + W_void)/W_i) - log1p(m_j/m_i).
+inline double ln_u_ratio_hit_and_stick(const PairMasses& pm, double u_i, double u_j) {
+  const double w_i = pm.m_i * u_i, w_j = pm.m_j * u_j;
   const double w_big = w_i > w_j ? w_i : w_j;
   const double w_small = w_i > w_j ? w_j : w_i;
   const double f =
       soft_min(0.99 + 1.03 * std::log(0.5 * (w_big / w_small + 1.0)), kVoidCap);
-  return std::log1p((w_j + f * w_small) / w_i) - std::log1p(m_j / m_i);
+  return std::log1p((w_j + f * w_small) / w_i) - pm.ln1p_ratio;
+}
+
+//! ln_u_ratio_hit_and_stick of masses m_i, m_j [g].
+inline double ln_u_ratio_hit_and_stick(double m_i, double u_i, double m_j, double u_j) {
+  return ln_u_ratio_hit_and_stick(pair_masses(m_i, m_j), u_i, u_j);
 }
 
 //! ln(u_p / u_i) of collisional compression (the reconstruction above) [-];
 //! s_c: slope d ln phi / d ln m [-].
-inline double ln_u_ratio_compression(double m_i, double u_i, double m_j, double u_j,
+inline double ln_u_ratio_compression(const PairMasses& pm, double u_i, double u_j,
                                      double s_c) {
-  const double mp = m_i + m_j;
-  return (m_j / mp) * std::log(u_j / u_i) - s_c * std::log1p(m_j / m_i);
+  return pm.frac_j * std::log(u_j / u_i) - s_c * pm.ln1p_ratio;
 }
 
 //! Equilibrium compression slope of spec §4.3 for the target (radius a [cm], St):
@@ -69,19 +86,30 @@ inline double compression_slope_of_target(double a, double St, const LocalGas& g
 
 //! ln(u_p / u_i) of a sticking pair at impact energy e_imp [erg] against the threshold
 //! 3 b E_roll [erg]: hit-and-stick and compression blended (above) [-].
-inline double product_ln_u_ratio(double m_i, double u_i, double m_j, double u_j,
+inline double product_ln_u_ratio(const PairMasses& pm, double u_i, double u_j,
                                  double e_imp, double e_threshold, double s_c) {
   const double w = log_step(e_imp, e_threshold, 0.1);
-  if (w == 1.0) return ln_u_ratio_compression(m_i, u_i, m_j, u_j, s_c);
-  const double hs = ln_u_ratio_hit_and_stick(m_i, u_i, m_j, u_j);
+  if (w == 1.0) return ln_u_ratio_compression(pm, u_i, u_j, s_c);
+  const double hs = ln_u_ratio_hit_and_stick(pm, u_i, u_j);
   if (w == 0.0) return hs;
-  return (1.0 - w) * hs + w * ln_u_ratio_compression(m_i, u_i, m_j, u_j, s_c);
+  return (1.0 - w) * hs + w * ln_u_ratio_compression(pm, u_i, u_j, s_c);
+}
+
+//! product_ln_u_ratio of masses m_i, m_j [g].
+inline double product_ln_u_ratio(double m_i, double u_i, double m_j, double u_j,
+                                 double e_imp, double e_threshold, double s_c) {
+  return product_ln_u_ratio(pair_masses(m_i, m_j), u_i, u_j, e_imp, e_threshold, s_c);
 }
 
 //! Impact energy of a pair, E = (1/2) mu dv^2, mu = m_i m_j / (m_i + m_j) (spec §15.3)
 //! [erg].
+inline double impact_energy(const PairMasses& pm, double dv) {
+  return pm.half_mu * dv * dv;
+}
+
+//! impact_energy of masses m_i, m_j [g].
 inline double impact_energy(double m_i, double m_j, double dv) {
-  return 0.5 * (m_i * m_j / (m_i + m_j)) * dv * dv;
+  return impact_energy(pair_masses(m_i, m_j), dv);
 }
 
 }  // namespace panoptic::physics::coagulation

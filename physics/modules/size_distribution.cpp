@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "physics/modules/porous_growth.hpp"
 #include "physics/particle.hpp"
@@ -112,13 +113,16 @@ void SizeDistribution::update_porous(std::span<const double> y, bool coefficient
                                      bool derivatives) const {
   const int nb = n_bins_;
   const auto& m = engine_.grid().m;
-  std::vector<double> phi_k(nb);
+  std::vector<double>& phi_k = phi_scratch_;
+  phi_k.resize(nb);
+  workspace_.resize(grid_.n_cells());
+  const coag::BinProperties& bins = bins_scratch_;
   for (int i = 0; i < grid_.n_cells(); ++i) {
     const physics::LocalGas& gas = gas_now_[i];
     const double rho0 = species_[i].rho0;
     for (int k = 0; k < nb; ++k) phi_k[k] = phi(i, k, y);
-    const coag::BinProperties bins =
-        coag::bin_properties(engine_.grid(), phi_k, rho0, gas, opt_.growth.drag);
+    coag::bin_properties(engine_.grid(), phi_k, rho0, gas, opt_.growth.drag,
+                         bins_scratch_);
     const std::size_t off = static_cast<std::size_t>(i) * nb;
     std::copy(bins.St.begin(), bins.St.end(),
               st_.begin() + static_cast<std::ptrdiff_t>(off));
@@ -138,9 +142,9 @@ void SizeDistribution::update_porous(std::span<const double> y, bool coefficient
     }
     if (!coefficients || !opt_.coagulation) continue;
     const long base = layout_.index(i, slot0_);
-    coef_[i] =
-        coag::cell_coefficients(engine_, y.subspan(base, nb), y.subspan(base + nb, nb),
-                                gas, cell_model(i), derivatives);
+    coef_[i] = coag::cell_coefficients(engine_, y.subspan(base, nb),
+                                       y.subspan(base + nb, nb), gas, cell_model(i),
+                                       derivatives, &workspace_[i], std::move(coef_[i]));
   }
 }
 

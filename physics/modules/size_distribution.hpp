@@ -216,6 +216,10 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   mutable std::vector<double> dst_dlnu_;
   mutable std::vector<physics::LocalGas> gas_now_;  //!< per cell, of the last refresh
   mutable std::vector<double> scratch_;
+  //! porous, per cell: what cell_coefficients reuses from call to call
+  mutable std::vector<physics::coagulation::CoefficientWorkspace> workspace_;
+  mutable std::vector<double> phi_scratch_;                   //!< porous, per bin
+  mutable physics::coagulation::BinProperties bins_scratch_;  //!< porous, per bin
 };
 
 }  // namespace panoptic
