@@ -29,6 +29,9 @@ struct BinSpeedTerms {
   double v_z = 0.0;    //!< settling speed at z = h_d (spec §3.4) [cm s^-1]
   double g = 0.0;      //!< St^2 / (St + St_eta) of OC07 eq. 27 (spec §3.5) [-]
   double heavy = 0.0;  //!< 1 / (1 + St) of OC07 eq. 29 (spec §3.5) [-]
+  //! the regime weights of dv2_turbulent at St_hi = St: log_step(St; St_eta) and
+  //! log_step(St; 1) (spec §3.5) [-]
+  double w_eta = 0.0, w_one = 0.0;
 };
 
 //! dv_total of the pairs of a cell's mass bins from per-bin terms (see the file's note).
@@ -64,6 +67,8 @@ class PairSpeedEvaluator {
     b.v_z = v_settling(st, gas_);
     b.g = st * st / (st + st_eta_);
     b.heavy = 1.0 / (1.0 + st);
+    b.w_eta = log_step(st, st_eta_, model_.blend_half_width_dex);
+    b.w_one = log_step(st, 1.0, model_.blend_half_width_dex);
     return b;
   }
 
@@ -80,8 +85,16 @@ class PairSpeedEvaluator {
     const double eps = s_lo / s_hi;
     const double inter = beta_oc07(eps, model_.y_a) * s_hi;
     const double heavy = p.heavy + q.heavy;
-    const double w_eta = log_step(s_hi, st_eta_, model_.blend_half_width_dex);
-    const double w_one = log_step(s_hi, 1.0, model_.blend_half_width_dex);
+    // The weights at St_hi: for partners more than 2.8x apart in St, soft_max's
+    // correction hi (1 + r^32/32) rounds to hi, so St_hi is one partner's St exactly and
+    // its weights are that partner's (most pairs; log_step costs a log and an exp in
+    // its +-0.6 dex band)
+    const BinSpeedTerms* top = s_hi == p.st ? &p : s_hi == q.st ? &q : nullptr;
+    const double w_eta = top != nullptr
+                             ? top->w_eta
+                             : log_step(s_hi, st_eta_, model_.blend_half_width_dex);
+    const double w_one =
+        top != nullptr ? top->w_one : log_step(s_hi, 1.0, model_.blend_half_width_dex);
     const double upper = (1.0 - w_one) * inter + w_one * heavy;
     const double turbulent = vg2_ * ((1.0 - w_eta) * tight + w_eta * upper);
     return std::sqrt(brownian + radial + azimuthal + vertical + turbulent);  // spec §3.6
