@@ -70,10 +70,13 @@ void BinPlanetesimals::cell_rates(int cell, std::span<const double> y,
   const int nb = dist_.n_bins();
   const physics::LocalGas& g = dist_.bin_gas(cell);
   for (auto* v : {&out.coag, &out.si, &out.coag_psi, &out.si_psi}) v->assign(nb, 0.0);
+  // each bin's state and St, read once: the SI rates below need the trigger of all bins
+  std::vector<BinState> state(nb);
   std::vector<double> st(nb);
   double rho_mid = 0.0;
   for (int k = 0; k < nb; ++k) {
-    const BinState v = bin_state(cell, k, y);
+    state[k] = bin_state(cell, k, y);
+    const BinState& v = state[k];
     const Bin<double> b = bin(cell, k, v.sigma, v.psi, v.phi, g);
     st[k] = b.st;
     out.coag[k] = b.coag;
@@ -83,9 +86,8 @@ void BinPlanetesimals::cell_rates(int cell, std::span<const double> y,
   if (opt_.si == StreamingInstability::kNone) return;
   const double on = trigger(rho_mid, g).first;
   for (int k = 0; k < nb; ++k) {
-    const BinState v = bin_state(cell, k, y);
-    out.si[k] = si_law(v.sigma, st[k], on, g.omega_k);
-    out.si_psi[k] = si_law(v.psi, st[k], on, g.omega_k);
+    out.si[k] = si_law(state[k].sigma, st[k], on, g.omega_k);
+    out.si_psi[k] = si_law(state[k].psi, st[k], on, g.omega_k);
   }
 }
 

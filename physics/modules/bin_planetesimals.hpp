@@ -29,11 +29,14 @@
 //!
 //! Sinks: sigma_k loses its rate, and psi_k (porous) the same fraction, by the same
 //! laws, linear in their surface density, applied to psi_k: phi_k is kept (spec §6.2).
-//! St and the gas are the SizeDistribution's (the gas of its last refresh). Jacobian:
-//! exact, each bin's laws by AD in its sigma_k, psi_k and ln phi_k (St through phi), the
-//! trigger's dependence on every bin of the cell chained through d trigger / d rho_mid:
-//! a dense block per cell when SI is on (that of the coagulation engine), each bin's own
-//! sigma_k, psi_k otherwise, and the rows of sigma_pl.
+//! St and the gas are the SizeDistribution's (the gas of its last refresh); porous St
+//! from the state here (SizeDistribution::bin_stokes), not the St the SizeDistribution
+//! stores: this module is evaluated before it (evaluation rank 2 < 3, the order in which
+//! the right-hand sides are summed), so that St is of the previous evaluation's state.
+//! Jacobian: exact, each bin's laws by AD in its sigma_k, psi_k and ln phi_k (St through
+//! phi), the trigger's dependence on every bin of the cell chained through d trigger /
+//! d rho_mid: a dense block per cell when SI is on (that of the coagulation engine), each
+//! bin's own sigma_k, psi_k otherwise, and the rows of sigma_pl.
 #include <span>
 #include <utility>
 #include <vector>
