@@ -95,11 +95,12 @@ struct CoefficientWorkspace {
   }
 };
 
-//! Empties every matrix of c, keeping its storage for reuse.
+//! Empties the matrices of c that a call refills with zeros or leaves empty, keeping
+//! their storage for reuse. The kernel, p_frag and dlnk_dlnu keep their size: where
+//! they are used every entry is written, and a resize from 0 would fill them first.
 inline void clear_coefficients(CellCoefficients& c) {
-  for (std::vector<double>* v :
-       {&c.kernel, &c.p_frag, &c.ln_u_ratio, &c.ln_phi_floor, &c.relax_rate, &c.dlnk_dlnu,
-        &c.dp_dlnu, &c.dd_dlnu_i, &c.dd_dlnu_j})
+  for (std::vector<double>* v : {&c.ln_u_ratio, &c.ln_phi_floor, &c.relax_rate,
+                                 &c.dp_dlnu, &c.dd_dlnu_i, &c.dd_dlnu_j})
     v->clear();
 }
 
@@ -149,7 +150,10 @@ inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
   const bool losses = s.fragmentation || s.cratering;
   ws.dv.resize(nn);
   c.kernel.resize(nn);
-  if (losses) c.p_frag.resize(nn);
+  if (losses)
+    c.p_frag.resize(nn);
+  else
+    c.p_frag.clear();
   for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) {
       const std::size_t ij = static_cast<std::size_t>(i) * n + j;
@@ -162,6 +166,7 @@ inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
         c.p_frag[ij] = c.p_frag[ji] =
             pair_loss_probability(v, i - j > engine.crater_bins(), s);
     }
+  if (!derivatives) c.dlnk_dlnu.clear();
   if (!porous) return c;
   const std::vector<double>& dv = ws.dv;
 
