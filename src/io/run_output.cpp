@@ -324,17 +324,26 @@ void RunOutput::add_field(const std::string& name, std::size_t width,
   h5::create_stack(g.get(), name, width, units, description, compressed);
   fields_[name] = width;
   if (n_snapshots_ == 0) return;
-  // A continued output without this field: the restart's copy could not read it (its
-  // header torn by a kill). Recreated, with NaN in the rows kept, and said (lost_rows).
+  // A continued output without this field. If the checkpoint's run wrote it (the
+  // checkpoint holds its row digests), the restart's copy could not read it (its header
+  // torn by a kill): lost. If not, the checkpoint's run did not write it at all (an
+  // earlier panoptic, without this field): new, not lost. Either way its kept rows are
+  // NaN, and said (lost_rows, new_fields).
   const std::vector<double> nan(width == 0 ? 1 : width,
                                 std::numeric_limits<double>::quiet_NaN());
-  auto& digests = digests_["snapshots/" + name];
+  const std::string key = "snapshots/" + name;
+  const bool was_written = restart_digests_.contains(key);
+  auto& digests = digests_[key];
   for (std::size_t i = 0; i < n_snapshots_; ++i) {
     h5::append_row(g.get(), name, nan);
     digests.push_back(row_digest(nan));
   }
-  lost_ += (lost_.empty() ? "/snapshots/" : "; /snapshots/") + name + " rows 0-" +
-           std::to_string(n_snapshots_ - 1) + " (the dataset was unreadable: recreated)";
+  const std::string rows = " rows 0-" + std::to_string(n_snapshots_ - 1);
+  if (was_written)
+    lost_ += (lost_.empty() ? "/" : "; /") + key + rows +
+             " (the dataset was unreadable: recreated)";
+  else
+    new_fields_ += (new_fields_.empty() ? "/" : "; /") + key + rows;
 }
 
 void RunOutput::write_snapshot(double t_yr,

@@ -60,6 +60,9 @@ class RunOutput {
   //! After a restart: the kept /snapshots rows the file had lost or garbled (see
   //! mark_lost_rows), now NaN; "" when none.
   const std::string& lost_rows() const { return lost_; }
+  //! After a restart: the fields this run writes that the checkpoint's run did not (an
+  //! earlier panoptic), with their kept rows, now NaN; "" when none.
+  const std::string& new_fields() const { return new_fields_; }
   //! After a restart: "" when the file was rebuilt as a fresh copy before it was
   //! continued (run_output.cpp, rebuild), else why it could not be (it is then continued
   //! in place).
@@ -108,8 +111,9 @@ class RunOutput {
   //! Declares /snapshots/<name>, `width` values per snapshot (0: a scalar per snapshot).
   //! For a continued output (restart), a field already in the file is kept; one the
   //! file lost (unreadable, left out of the restart's copy) is recreated with NaN rows
-  //! up to the checkpoint's snapshot, and named in lost_rows(). `compressed`: its rows
-  //! are deflated (h5::create_stack).
+  //! up to the checkpoint's snapshot, and named in lost_rows(); one the checkpoint's run
+  //! never wrote (an earlier panoptic) likewise, named in new_fields(). `compressed`: its
+  //! rows are deflated (h5::create_stack).
   void add_field(const std::string& name, std::size_t width, const std::string& units,
                  const std::string& description, bool compressed = false);
   //! Appends one snapshot: /snapshots/time and every declared field, then flushes.
@@ -167,6 +171,7 @@ class RunOutput {
   std::map<std::string, std::size_t> fields_;
   std::size_t n_snapshots_ = 0;
   std::string lost_;
+  std::string new_fields_;
   std::string run_id_;
   std::string rebuild_note_;
   RowDigests digests_;          //!< of the rows in the file

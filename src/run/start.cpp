@@ -108,6 +108,15 @@ void report_restart_losses(RunOutput& out, const RunDiagnostics& diag) {
   if (!out.rebuild_note().empty())
     std::fprintf(stderr, "panoptic: warning: %s: %s\n", out.path().c_str(),
                  out.rebuild_note().c_str());
+  if (!out.new_fields().empty()) {
+    std::fprintf(stderr,
+                 "panoptic: note: %s: fields that the checkpoint's run did not write (an "
+                 "earlier panoptic) are added, NaN in the snapshots before the restart: "
+                 "%s\n",
+                 out.path().c_str(), out.new_fields().c_str());
+    out.set_root_attr("restarts", out.root_attr("restarts") +
+                                      "; fields added (NaN before): " + out.new_fields());
+  }
   std::string lost = out.lost_rows();
   if (!diag.lost_rows().empty()) lost += (lost.empty() ? "" : "; ") + diag.lost_rows();
   if (!lost.empty()) {
