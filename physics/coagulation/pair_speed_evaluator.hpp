@@ -88,7 +88,7 @@ class PairSpeedEvaluator {
     // The weights at St_hi: for partners more than 2.8x apart in St, soft_max's
     // correction hi (1 + r^32/32) rounds to hi, so St_hi is one partner's St exactly and
     // its weights are that partner's (most pairs; log_step costs a log and an exp in
-    // its +-0.6 dex band)
+    // its +-1.3 dex band around the switch)
     const BinSpeedTerms* top = s_hi == p.st ? &p : s_hi == q.st ? &q : nullptr;
     const double w_eta = top != nullptr
                              ? top->w_eta
