@@ -154,8 +154,10 @@ IntegratorOptions Simulation::integrator_options() const {
   o.max_dt = cfg_.real("solver.max_dt_yr") * kYr;
   o.newton_coef = cfg_.real("solver.newton_coef");
   o.steps_per_jacobian = cfg_.integer("solver.steps_per_jacobian");
-  o.linear = cfg_.str("solver.linear") == "block" ? LinearSolverKind::block
-                                                  : LinearSolverKind::klu;
+  const std::string linear = cfg_.str("solver.linear");
+  o.linear = linear == "block"   ? LinearSolverKind::block
+             : linear == "gmres" ? LinearSolverKind::gmres
+                                 : LinearSolverKind::klu;
   const auto& L = *layout_;
   const double atol = cfg_.real("solver.atol_sigma");
   o.atol.resize(L.size());

@@ -215,6 +215,14 @@ int run_scene(const RunArgs& a) {
       "solver: %ld steps, %ld RHS, %ld Jacobian evaluations, %ld error-test and %ld "
       "nonlinear convergence failures, %ld reinitialisations, %.3f s wall\n",
       s.nst, s.nfe, s.nje, s.netf, s.nncf, s.nreinit, wall);
+  if (cfg.str("solver.linear") == "gmres") {  // this process's, not the checkpoint's
+    const KrylovStats k = cvode.krylov_stats();
+    const long nni = s.nni - (restarted ? start_point.stats.nni : 0);
+    std::printf(
+        "GMRES: %ld linear iterations (%.2f per Newton iteration), %ld "
+        "preconditioner solves, %ld linear convergence failures\n",
+        k.nli, nni > 0 ? static_cast<double>(k.nli) / nni : 0.0, k.nps, k.nlcf);
+  }
   if (restarted)  // the counts above are the run's; what this process did since the
                   // restart
     std::printf("this process: %ld steps, %ld RHS from t = %.6g yr, %.3f s wall\n",

@@ -4,6 +4,7 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_klu.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 
 #include "src/core/error.hpp"
 #include "src/solver/block_linear_solver.hpp"
+#include "src/solver/cell_block_preconditioner.hpp"
 #include "src/solver/serial_vector_ops.hpp"
 
 namespace panoptic {
@@ -83,6 +85,9 @@ void set_solver_ops(void* ls, LinearSolverKind kind, bool timed) {
         timed ? timed_lsetup<block_linear_solver_setup> : block_linear_solver_setup;
     ops->solve =
         timed ? timed_lsolve<block_linear_solver_solve> : block_linear_solver_solve;
+  } else if (kind == LinearSolverKind::gmres) {
+    ops->setup = timed ? timed_lsetup<SUNLinSolSetup_SPGMR> : SUNLinSolSetup_SPGMR;
+    ops->solve = timed ? timed_lsolve<SUNLinSolSolve_SPGMR> : SUNLinSolSolve_SPGMR;
   } else {
     ops->setup = timed ? timed_lsetup<SUNLinSolSetup_KLU> : SUNLinSolSetup_KLU;
     ops->solve = timed ? timed_lsolve<SUNLinSolSolve_KLU> : SUNLinSolSolve_KLU;
@@ -104,27 +109,60 @@ extern "C" int nls_rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* 
 // A with its index arrays, copies J to a saved matrix or back, and adds the identity by
 // a search for each diagonal: three passes more, 5 % of the fiducial run (perf). Same
 // arithmetic (A_ij = c J_ij, A_jj = 1 + c J_jj, c = -gamma), so the same bits.
+// Evaluates J into d->jacobian unless CVODE lets the last one be reused (jok).
+int update_jacobian(CvodeCallbackData* d, sunrealtype t, N_Vector y, sunbooleantype jok,
+                    sunbooleantype* jcur) {
+  *jcur = jok ? SUNFALSE : SUNTRUE;  // before the evaluation, as cvLsLinSys
+  if (jok) return 0;
+  ++d->n_jacobian;
+  const auto t0 = Clock::now();
+  const int flag = d->model->jacobian_nothrow(t, as_span(y), d->jacobian);
+  if (d->times) {
+    d->times->jac_s += seconds_since(t0);
+    ++d->times->n_jac;
+  }
+  return flag;
+}
+
 extern "C" int linsys_callback(sunrealtype t, N_Vector y, N_Vector, SUNMatrix A,
                                sunbooleantype jok, sunbooleantype* jcur,
                                sunrealtype gamma, void* data, N_Vector, N_Vector,
                                N_Vector) {
   auto* d = static_cast<CvodeCallbackData*>(data);
-  std::vector<double>& jac = d->jacobian;
-  *jcur = jok ? SUNFALSE : SUNTRUE;  // before the evaluation, as cvLsLinSys
-  if (!jok) {
-    const auto t0 = Clock::now();
-    const int flag = d->model->jacobian_nothrow(t, as_span(y), jac);
-    if (d->times) {
-      d->times->jac_s += seconds_since(t0);
-      ++d->times->n_jac;
-    }
-    if (flag != 0) return flag;
-  }
+  const std::vector<double>& jac = d->jacobian;
+  if (const int flag = update_jacobian(d, t, y, jok, jcur); flag != 0) return flag;
   double* a = SUNSparseMatrix_Data(A);
   const double c = -gamma;
   for (std::size_t k = 0; k < jac.size(); ++k) a[k] = c * jac[k];
   for (const std::size_t k : d->diagonal) a[k] = 1.0 + c * jac[k];
   return 0;
+}
+
+// GMRES (solver.linear = "gmres"). CVODE's iterative interface forms the products
+// (I - gamma J) v from J v; these come from the Jacobian the modules assemble (the one
+// KLU would factorise), evaluated in the preconditioner's set-up when CVODE asks for a
+// fresh one (jok false) and reused otherwise, so that GMRES solves the Newton systems
+// KLU solves, up to its tolerance, rather than those of difference quotients.
+extern "C" int jtimes_callback(N_Vector v, N_Vector jv, sunrealtype, N_Vector, N_Vector,
+                               void* data, N_Vector) {
+  const auto* d = static_cast<CvodeCallbackData*>(data);
+  d->pattern->multiply(d->jacobian, as_span(v), as_mut_span(jv));
+  return 0;
+}
+
+// P = I - gamma J_cc (cell_block_preconditioner.hpp); a singular block is recoverable.
+extern "C" int psetup_callback(sunrealtype t, N_Vector y, N_Vector, sunbooleantype jok,
+                               sunbooleantype* jcur, sunrealtype gamma, void* data) {
+  auto* d = static_cast<CvodeCallbackData*>(data);
+  if (const int flag = update_jacobian(d, t, y, jok, jcur); flag != 0) return flag;
+  return d->preconditioner->setup(d->jacobian, gamma) ? 0 : 1;
+}
+
+extern "C" int psolve_callback(sunrealtype, N_Vector, N_Vector, N_Vector r, N_Vector z,
+                               sunrealtype, sunrealtype, int, void* data) {
+  N_VScale(1.0, r, z);
+  return static_cast<CvodeCallbackData*>(data)->preconditioner->solve(as_mut_span(z)) ? 0
+                                                                                      : 1;
 }
 
 // The state vector's weighted RMS norm (used by every Newton iteration and error test):
@@ -230,6 +268,12 @@ void CvodeIntegrator::create_cvode(double t0) {
   check(CVodeSetNlsRhsFn(cvode_, nls_rhs_callback), "CVodeSetNlsRhsFn");
   if (constr_) check(CVodeSetConstraints(cvode_, nv(constr_)), "CVodeSetConstraints");
   const auto& pattern = model_.pattern();
+  callback_data_.jacobian.assign(static_cast<std::size_t>(pattern.nnz()), 0.0);
+  callback_data_.n_jacobian = 0;
+  if (opt_.linear == LinearSolverKind::gmres) {
+    create_krylov_solver();
+    return;
+  }
   A_ = SUNSparseMatrix(n, n, pattern.nnz(), CSC_MAT, ctx);
   if (opt_.linear == LinearSolverKind::block) {
     if (!block_lu_) {
@@ -256,7 +300,6 @@ void CvodeIntegrator::create_cvode(double t0) {
   // A keeps the pattern's structure; linsys_callback writes only its values
   pattern.copy_structure_to(SUNSparseMatrix_IndexPointers(static_cast<SUNMatrix>(A_)),
                             SUNSparseMatrix_IndexValues(static_cast<SUNMatrix>(A_)));
-  callback_data_.jacobian.assign(static_cast<std::size_t>(pattern.nnz()), 0.0);
   callback_data_.diagonal.assign(static_cast<std::size_t>(n), 0);
   for (sunindextype j = 0; j < n; ++j) {
     const long k = pattern.position(j, j);
@@ -267,6 +310,33 @@ void CvodeIntegrator::create_cvode(double t0) {
     callback_data_.diagonal[static_cast<std::size_t>(j)] = static_cast<std::size_t>(k);
   }
   check(CVodeSetLinSysFn(cvode_, linsys_callback), "CVodeSetLinSysFn");
+  set_step_controls();
+}
+
+void CvodeIntegrator::create_krylov_solver() {
+  // Right preconditioning: SPGMR's stopping test then bounds the weighted residual of
+  // the Newton system itself, ||W (b - (I - gamma J) x)|| < delta, whatever P's quality
+  // (left preconditioning would bound that of P^-1 (b - A x), which for a block-Jacobi P
+  // that drops the transport between cells is not the Newton system's residual).
+  const StateLayout& layout = model_.layout();
+  if (!preconditioner_)
+    preconditioner_ = std::make_unique<CellBlockPreconditioner>(
+        model_.pattern(), layout.n_cells(), layout.n_cell_vars());
+  callback_data_.pattern = &model_.pattern();
+  callback_data_.preconditioner = preconditioner_.get();
+  LS_ = SUNLinSol_SPGMR(nv(y_), SUN_PREC_RIGHT, kKrylovDimension,
+                        static_cast<SUNContext>(sunctx_));
+  if (LS_ == nullptr) throw SolverError("linear solver set-up failed");
+  if (callback_data_.times) set_solver_ops(LS_, opt_.linear, true);
+  check(CVodeSetLinearSolver(cvode_, static_cast<SUNLinearSolver>(LS_), nullptr),
+        "CVodeSetLinearSolver");
+  check(CVodeSetJacTimes(cvode_, nullptr, jtimes_callback), "CVodeSetJacTimes");
+  check(CVodeSetPreconditioner(cvode_, psetup_callback, psolve_callback),
+        "CVodeSetPreconditioner");
+  set_step_controls();
+}
+
+void CvodeIntegrator::set_step_controls() {
   // Our step budget is counted across calls (advance_to); CVODE's per-call limit of 500
   // only ends a call early, it is not an error (see advance_to).
   check(CVodeSetMaxNumSteps(cvode_, 5000), "CVodeSetMaxNumSteps");
@@ -284,7 +354,7 @@ void CvodeIntegrator::free_cvode() {
   // Reverse order of creation.
   CVodeFree(&cvode_);
   SUNLinSolFree(static_cast<SUNLinearSolver>(LS_));
-  SUNMatDestroy(static_cast<SUNMatrix>(A_));
+  if (A_) SUNMatDestroy(static_cast<SUNMatrix>(A_));
   LS_ = nullptr;
   A_ = nullptr;
 }
@@ -387,6 +457,7 @@ void CvodeIntegrator::advance_to(double t_out,
 
 void CvodeIntegrator::reinit(double t, std::span<const double> y) {
   before_ = stats();
+  krylov_before_ = krylov_stats();
   ++before_.nreinit;
   std::copy(y.begin(), y.end(), N_VGetArrayPointer(nv(y_)));
   clip_to_constraints();
@@ -415,6 +486,21 @@ SolverStats CvodeIntegrator::cvode_counters() const {
   CVodeGetNumNonlinSolvIters(cvode_, &s.nni);
   CVodeGetNumNonlinSolvConvFails(cvode_, &s.nncf);
   CVodeGetLastStep(cvode_, &s.h_last);
+  // the matrix-free interface leaves the Jacobian to the preconditioner's set-up
+  if (opt_.linear == LinearSolverKind::gmres) s.nje = callback_data_.n_jacobian;
+  return s;
+}
+
+KrylovStats CvodeIntegrator::krylov_stats() const {
+  KrylovStats s = krylov_before_;
+  if (opt_.linear != LinearSolverKind::gmres) return s;
+  long v = 0;
+  CVodeGetNumLinIters(cvode_, &v);
+  s.nli += v;
+  CVodeGetNumPrecSolves(cvode_, &v);
+  s.nps += v;
+  CVodeGetNumLinConvFails(cvode_, &v);
+  s.nlcf += v;
   return s;
 }
 

@@ -1,9 +1,11 @@
 #pragma once
 //! CVODE (BDF, variable order) with a sparse Jacobian in CSC form, its Newton systems
-//! solved by KLU or by the block-banded solver (block_banded_lu.hpp) of a layout of
-//! cells. RAII over SUNContext, N_Vector, SUNSparseMatrix, SUNLinearSolver and the CVODE
-//! memory; non-copyable. The Jacobian pattern comes from the DiskModel and is copied into
-//! the matrix at every call (CVODE zeroes the index arrays with the values).
+//! solved by KLU, by the block-banded solver (block_banded_lu.hpp) of a layout of
+//! cells, or by GMRES with a per-cell block preconditioner
+//! (cell_block_preconditioner.hpp). RAII over SUNContext, N_Vector, SUNSparseMatrix,
+//! SUNLinearSolver and the CVODE memory; non-copyable. The Jacobian pattern comes from
+//! the DiskModel and is copied into the matrix at every call (CVODE zeroes the index
+//! arrays with the values).
 #include <functional>
 #include <memory>
 #include <span>
@@ -14,6 +16,8 @@
 #include "src/solver/solver_stats.hpp"
 
 namespace panoptic {
+
+class CellBlockPreconditioner;
 
 //! Wall time spent in each part of the integration, for benchmarks (see
 //! CvodeIntegrator::set_profile): the model's right-hand side and Jacobian, and KLU's
@@ -33,12 +37,27 @@ struct CvodeCallbackData {
   //! I - gamma J of the steps that reuse it, and where each column's diagonal sits.
   std::vector<double> jacobian;
   std::vector<std::size_t> diagonal;
+  //! GMRES (solver.linear = "gmres"): the pattern for the products J v, the
+  //! preconditioner, and the Jacobian evaluations since CVODE's creation (CVODE counts
+  //! only those of its matrix-based interface).
+  const SparsityPattern* pattern = nullptr;
+  CellBlockPreconditioner* preconditioner = nullptr;
+  long n_jacobian = 0;
 };
 
 //! The solver of CVODE's Newton systems (solver.linear).
 enum class LinearSolverKind {
-  klu,   //!< KLU, sparse LU of the whole matrix
-  block  //!< BlockBandedLU: dense LU of the cells' blocks, banded elimination
+  klu,    //!< KLU, sparse LU of the whole matrix
+  block,  //!< BlockBandedLU: dense LU of the cells' blocks, banded elimination
+  gmres   //!< SPGMR, products with the assembled J, right-preconditioned by cell blocks
+};
+
+//! The counters of the Krylov iteration (solver.linear = "gmres"; zero otherwise) since
+//! the integrator's construction: not in SolverStats, so not carried by checkpoints.
+struct KrylovStats {
+  long nli = 0;   //!< linear (GMRES) iterations
+  long nps = 0;   //!< preconditioner solves
+  long nlcf = 0;  //!< linear convergence failures
 };
 
 struct IntegratorOptions {
@@ -99,6 +118,9 @@ class CvodeIntegrator {
 
   //! The block solver (solver.linear = "block"; null with KLU).
   const BlockBandedLU* block_solver() const { return block_lu_.get(); }
+  //! The preconditioner (solver.linear = "gmres"; null otherwise).
+  const CellBlockPreconditioner* preconditioner() const { return preconditioner_.get(); }
+  KrylovStats krylov_stats() const;
 
   double time() const { return t_; }
   std::span<const double> state() const;
@@ -118,6 +140,10 @@ class CvodeIntegrator {
   //! Creates the CVODE memory, the matrix and the linear solver at (t0, y_) with the
   //! options.
   void create_cvode(double t0);
+  //! create_cvode's part for GMRES: SPGMR, the products J v and the preconditioner.
+  void create_krylov_solver();
+  //! The step budget, largest step, Newton coefficient and Jacobian ages of the options.
+  void set_step_controls();
   void free_cvode();
 
   DiskModel& model_;
@@ -133,11 +159,15 @@ class CvodeIntegrator {
   //! The block solver's factors (solver.linear = "block"), kept across reinit: it holds
   //! no state from one factorisation to the next, only the storage and the pattern's map.
   std::unique_ptr<BlockBandedLU> block_lu_;
+  std::unique_ptr<CellBlockPreconditioner> preconditioner_;  // as block_lu_, for GMRES
+  KrylovStats krylov_before_;  // of the CVODE instances before the last reinit
   void* cvode_ = nullptr;
   CvodeCallbackData callback_data_;  // newton_iterate: for the report of a failure
   std::string cvode_message_;
   //! Steps in a row that did not advance t (below its round-off); see advance_to.
   static constexpr int kMaxStalledSteps = 100;
+  //! GMRES's Krylov dimension (SUNLinSol_SPGMR's maxl; CVODE's default 5).
+  static constexpr int kKrylovDimension = 20;
   int stalled_ = 0;
   friend void cvode_error_handler(int, const char*, const char*, char*, void*);
 };

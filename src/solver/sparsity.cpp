@@ -34,6 +34,17 @@ void SparsityPattern::copy_structure_to(sunindextype* colptrs,
   std::copy(row_index_.begin(), row_index_.end(), rowvals);
 }
 
+void SparsityPattern::multiply(std::span<const double> values, std::span<const double> x,
+                               std::span<double> y) const {
+  std::fill(y.begin(), y.end(), 0.0);
+  for (long c = 0; c < n_; ++c) {
+    const double xc = x[static_cast<std::size_t>(c)];
+    for (auto p = col_ptr_[c]; p < col_ptr_[c + 1]; ++p)
+      y[static_cast<std::size_t>(row_index_[p])] +=
+          values[static_cast<std::size_t>(p)] * xc;
+  }
+}
+
 PatternMiss::PatternMiss(long r, long c)
     : std::logic_error("Jacobian entry (" + std::to_string(r) + ", " + std::to_string(c) +
                        ") is outside the declared pattern"),

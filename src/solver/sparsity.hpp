@@ -39,6 +39,9 @@ class SparsityPattern {
   void copy_structure_to(sunindextype* colptrs, sunindextype* rowvals) const;
   std::span<const sunindextype> col_ptr() const { return col_ptr_; }
   std::span<const sunindextype> row_index() const { return row_index_; }
+  //! y = A x for the matrix A whose values, in the pattern's order, are `values`.
+  void multiply(std::span<const double> values, std::span<const double> x,
+                std::span<double> y) const;
 
  private:
   long n_ = 0;

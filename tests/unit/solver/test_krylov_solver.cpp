@@ -1,0 +1,222 @@
+// GMRES with the per-cell block preconditioner (solver.linear = "gmres";
+// src/solver/cell_block_preconditioner.hpp): the preconditioner against a dense inverse
+// of the same blocks; a Newton system (I - gamma J) x = b of the small size-distribution
+// scene solved by SPGMR (products with the assembled J, right preconditioning, as the
+// integrator sets it up) against KLU's solution of the same matrix; the key.
+#include <gtest/gtest.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "src/core/units.hpp"
+#include "src/model/simulation.hpp"
+#include "src/scene/config.hpp"
+#include "src/solver/cell_block_preconditioner.hpp"
+#include "src/solver/cvode_integrator.hpp"
+#include "tests/unit/support/config_error.hpp"
+#include "tests/unit/support/jacobian_check.hpp"
+
+namespace panoptic {
+namespace {
+
+std::string small_scene() {
+  return std::string(PANOPTIC_SOURCE_DIR) + "/params/tests/distribution_small.toml";
+}
+
+// P^-1 x against the inverse of the dense matrix I - gamma J restricted to the cells'
+// diagonal blocks and the globals' diagonal: 3 cells of 4 variables, 2 globals, every
+// entry of the matrix in the pattern (the couplings between cells must be dropped).
+TEST(CellBlockPreconditioner, InvertsTheCellBlocksOnly) {
+  const int n_cells = 3, b = 4, n_g = 2, n = n_cells * b + n_g;
+  PatternBuilder builder(n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) builder.add(i, j);
+  const SparsityPattern pattern(builder);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> jac(static_cast<std::size_t>(pattern.nnz()));
+  for (double& v : jac) v = u(rng);
+  const double gamma = 2.0;
+  Eigen::MatrixXd p = Eigen::MatrixXd::Identity(n, n);
+  const auto col_ptr = pattern.col_ptr();
+  const auto rows = pattern.row_index();
+  for (long c = 0; c < n; ++c)
+    for (auto k = col_ptr[c]; k < col_ptr[c + 1]; ++k) {
+      const long r = rows[k];
+      const bool same_cell = r < n_cells * b && c < n_cells * b && r / b == c / b;
+      if (same_cell || r == c) p(r, c) -= gamma * jac[static_cast<std::size_t>(k)];
+    }
+  CellBlockPreconditioner pre(pattern, n_cells, b);
+  ASSERT_TRUE(pre.setup(jac, gamma));
+  std::vector<double> x(static_cast<std::size_t>(n));
+  for (double& v : x) v = u(rng);
+  const Eigen::VectorXd expected =
+      p.partialPivLu().solve(Eigen::Map<Eigen::VectorXd>(x.data(), n));
+  ASSERT_TRUE(pre.solve(x));
+  for (int i = 0; i < n; ++i) EXPECT_NEAR(x[i], expected(i), 1e-12) << i;
+  EXPECT_EQ(pre.stored_doubles(), n_cells * b * b + n_g);
+  // a singular block is reported: gamma J = I on the first cell's block
+  std::vector<double> singular(jac.size(), 0.0);
+  for (int i = 0; i < b; ++i)
+    singular[static_cast<std::size_t>(pattern.position(i, i))] = 1.0 / gamma;
+  EXPECT_FALSE(pre.setup(singular, gamma));
+}
+
+//! The Newton matrix A = I - gamma J of the products and the preconditioner of SPGMR.
+struct NewtonSystem {
+  const SparsityPattern* pattern;
+  std::vector<double> jac;
+  double gamma;
+  CellBlockPreconditioner* pre;
+};
+
+extern "C" int newton_times(void* data, N_Vector v, N_Vector z) {
+  const auto* s = static_cast<NewtonSystem*>(data);
+  const std::size_t n = static_cast<std::size_t>(N_VGetLength(v));
+  const std::span<const double> vs(N_VGetArrayPointer(v), n);
+  const std::span<double> zs(N_VGetArrayPointer(z), n);
+  s->pattern->multiply(s->jac, vs, zs);
+  for (std::size_t i = 0; i < n; ++i) zs[i] = vs[i] - s->gamma * zs[i];
+  return 0;
+}
+extern "C" int newton_psetup(void* data) {
+  const auto* s = static_cast<NewtonSystem*>(data);
+  return s->pre->setup(s->jac, s->gamma) ? 0 : 1;
+}
+extern "C" int newton_psolve(void* data, N_Vector r, N_Vector z, sunrealtype, int) {
+  N_VScale(1.0, r, z);
+  const auto* s = static_cast<NewtonSystem*>(data);
+  return s->pre->solve({N_VGetArrayPointer(z), static_cast<std::size_t>(N_VGetLength(z))})
+             ? 0
+             : 1;
+}
+
+// The weighted RMS norm of CVODE's tests.
+double wrms(const std::vector<double>& x, const std::vector<double>& w) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) s += (x[i] * w[i]) * (x[i] * w[i]);
+  return std::sqrt(s / static_cast<double>(x.size()));
+}
+
+// A Newton system of the small distribution scene (porous bins: the widest cells), every
+// bin filled, gamma of a 1000 yr step (the transport couples the cells: the block
+// preconditioner alone is not the inverse), right-hand side of unit weighted size. SPGMR
+// stops at ||W (b - A x)||_2 < delta = delta_rms sqrt(N), CVODE's form of its Krylov
+// tolerance in the weighted RMS norm (there eplifac 0.05 times the error-test constant;
+// here 1e-6, to see the iteration converge to KLU's solution).
+TEST(KrylovSolver, NewtonSystemMatchesKlu) {
+  Simulation sim(
+      load_scene(small_scene(), std::vector<std::string>{"porosity.enabled=true"}));
+  const DiskModel& model = sim.model();
+  const StateLayout& layout = model.layout();
+  const SparsityPattern& pattern = model.pattern();
+  const std::vector<double> y = testing::perturbed_state(sim, 3);
+  const long n = layout.size();
+  const auto nz = static_cast<std::size_t>(n);
+  CellBlockPreconditioner pre(pattern, layout.n_cells(), layout.n_cell_vars());
+  NewtonSystem sys{&pattern, std::vector<double>(static_cast<std::size_t>(pattern.nnz())),
+                   1000.0 * units::kYr, &pre};
+  model.jacobian(0.0, y, sys.jac);
+  const IntegratorOptions opt = sim.integrator_options();
+  std::vector<double> w(nz), b(nz);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (std::size_t i = 0; i < nz; ++i) {
+    w[i] = 1.0 / (opt.rtol * std::abs(y[i]) + opt.atol[i]);
+    b[i] = normal(rng) / w[i];
+  }
+  SUNContext ctx = nullptr;
+  ASSERT_EQ(SUNContext_Create(nullptr, &ctx), 0);
+  N_Vector bv = N_VMake_Serial(n, b.data(), ctx), wv = N_VMake_Serial(n, w.data(), ctx);
+  // KLU on A
+  SUNMatrix a = SUNSparseMatrix(n, n, pattern.nnz(), CSC_MAT, ctx);
+  pattern.copy_structure_to(SUNSparseMatrix_IndexPointers(a),
+                            SUNSparseMatrix_IndexValues(a));
+  double* av = SUNSparseMatrix_Data(a);
+  for (std::size_t k = 0; k < sys.jac.size(); ++k) av[k] = -sys.gamma * sys.jac[k];
+  for (long i = 0; i < n; ++i) av[pattern.position(i, i)] += 1.0;
+  N_Vector x_klu = N_VClone(bv);
+  SUNLinearSolver klu = SUNLinSol_KLU(bv, a, ctx);
+  ASSERT_EQ(SUNLinSolInitialize(klu), 0);
+  ASSERT_EQ(SUNLinSolSetup(klu, a), 0);
+  ASSERT_EQ(SUNLinSolSolve(klu, a, x_klu, bv, 0.0), 0);
+  // SPGMR, right-preconditioned, and without the preconditioner
+  const double delta_rms = 1e-6;
+  const auto gmres = [&](int prec, std::vector<double>& x, long& iterations) {
+    N_Vector xv = N_VMake_Serial(n, x.data(), ctx);
+    N_VConst(0.0, xv);
+    SUNLinearSolver s = SUNLinSol_SPGMR(bv, prec, 20, ctx);
+    SUNLinSolSetATimes(s, &sys, newton_times);
+    SUNLinSolSetPreconditioner(s, &sys, newton_psetup, newton_psolve);
+    SUNLinSolSetScalingVectors(s, wv, wv);
+    SUNLinSolInitialize(s);
+    EXPECT_EQ(SUNLinSolSetup(s, nullptr), 0);
+    const int flag =
+        SUNLinSolSolve(s, nullptr, xv, bv, delta_rms * std::sqrt(static_cast<double>(n)));
+    iterations = SUNLinSolNumIters(s);
+    SUNLinSolFree(s);
+    N_VDestroy(xv);
+    return flag;
+  };
+  std::vector<double> x(nz), x_plain(nz);
+  long iterations = 0, plain_iterations = 0;
+  EXPECT_EQ(gmres(SUN_PREC_RIGHT, x, iterations), SUNLS_SUCCESS);
+  const int plain = gmres(SUN_PREC_NONE, x_plain, plain_iterations);
+  std::vector<double> diff(nz), residual(nz);
+  const double* xk = N_VGetArrayPointer(x_klu);
+  for (std::size_t i = 0; i < nz; ++i) diff[i] = x[i] - xk[i];
+  pattern.multiply(sys.jac, x, residual);
+  for (std::size_t i = 0; i < nz; ++i)
+    residual[i] = b[i] - (x[i] - sys.gamma * residual[i]);
+  std::printf(
+      "N = %ld: GMRES %ld iterations, weighted RMS residual %.3g, |x - x_klu| %.3g "
+      "(KLU's solution %.3g); without the preconditioner: flag %d after %ld\n",
+      n, iterations, wrms(residual, w), wrms(diff, w),
+      wrms(std::vector<double>(xk, xk + nz), w), plain, plain_iterations);
+  EXPECT_LT(wrms(residual, w), delta_rms);
+  // the residual bounds the error through A^-1 (in the weighted norm: a few here)
+  EXPECT_LT(wrms(diff, w), 10.0 * delta_rms);
+  EXPECT_GT(iterations, 1);         // the cells' coupling is not in P
+  EXPECT_NE(plain, SUNLS_SUCCESS);  // nor is I - gamma J close to I
+  SUNLinSolFree(klu);
+  SUNMatDestroy(a);
+  N_VDestroy(x_klu);
+  N_VDestroy(bv);
+  N_VDestroy(wv);
+  SUNContext_Free(&ctx);
+}
+
+// solver.linear = "gmres": accepted, listed in the refusal of an unknown solver, and
+// what the integrator builds (the preconditioner over the layout's cells).
+TEST(KrylovSolver, SolverLinearKey) {
+  const Config cfg =
+      load_scene(small_scene(), std::vector<std::string>{"solver.linear=\"gmres\""});
+  EXPECT_EQ(cfg.str("solver.linear"), "gmres");
+  Simulation sim(cfg);
+  const IntegratorOptions opt = sim.integrator_options();
+  EXPECT_EQ(opt.linear, LinearSolverKind::gmres);
+  CvodeIntegrator cvode(sim.model(), 0.0, sim.initial_state(), opt);
+  ASSERT_NE(cvode.preconditioner(), nullptr);
+  const int b = sim.model().layout().n_cell_vars();
+  EXPECT_EQ(cvode.preconditioner()->stored_doubles(),
+            static_cast<long>(sim.model().layout().n_cells()) * b * b +
+                sim.model().layout().n_global_vars());
+  EXPECT_EQ(cvode.block_solver(), nullptr);
+  const std::string m = config_error_message(
+      [&] {
+        load_scene(small_scene(), std::vector<std::string>{"solver.linear=\"krylov\""});
+      },
+      "solver.linear = krylov");
+  EXPECT_NE(m.find("klu, block, gmres"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace panoptic
