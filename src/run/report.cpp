@@ -51,14 +51,20 @@ void print_budget(const Simulation& sim, std::span<const double> y) {
   std::printf("dust budget [M_earth]: %s = %.6g; initial %.6g; relative error %.2e\n",
               terms.c_str(), total / units::kMearth, m0 / units::kMearth, error);
   // The terms are integrated with the state, so the budget closes to round-off (<= 7e-14
-  // over every scene and the extremes matrix): more means a sink or source that is not
-  // booked as a budget term, a bug of the model, not of the integration.
-  if (!(error <= 1e-10))
+  // over every scene and the extremes matrix) when the Newton systems are solved
+  // directly: more means a sink or source that is not booked as a budget term, a bug of
+  // the model, not of the integration. GMRES solves them only to a fraction of the
+  // error tolerance, and conservation holds to that residual: the limit is solver.rtol
+  // (tests/bench/results/krylov_solver.md).
+  const Config& cfg = sim.config();
+  const bool krylov = cfg.str("solver.linear") == "gmres";
+  const double limit = krylov ? cfg.real("solver.rtol") : 1e-10;
+  if (!(error <= limit))
     std::printf(
-        "WARNING: the dust budget does not close (%.2e > 1e-10): some dust leaves or "
+        "WARNING: the dust budget does not close (%.2e > %.0e): some dust leaves or "
         "enters the grid without a budget term; a module's sink or source is not booked "
         "(physics/README.md, Adding a physical process)\n",
-        error);
+        error, limit);
 }
 
 }  // namespace panoptic
