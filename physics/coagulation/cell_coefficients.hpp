@@ -26,6 +26,10 @@ struct CellModel {
   Species species;           //!< monomers (a0, rho0, m0, E_roll)
   GrowthOptions growth;      //!< drag law, b, phi_max, floors on/off, turbulence
   OutcomeSwitches outcomes;  //!< fragmentation and cratering switches and speeds
+  //! e of bin_porosity() [g cm^-2]; the default, below any state of the tests, keeps u =
+  //! psi/sigma to the last bit (the distribution mode sets kEmptyBinFraction of its dust
+  //! scale)
+  double empty_scale = kTinyEmptyScale;
 };
 
 //! The outcomes of a cell's pairs under the scene's switches (spec §15.2):
@@ -99,16 +103,18 @@ struct CoefficientWorkspace {
 //! their storage for reuse. The kernel, p_frag and dlnk_dlnu keep their size: where
 //! they are used every entry is written, and a resize from 0 would fill them first.
 inline void clear_coefficients(CellCoefficients& c) {
-  for (std::vector<double>* v : {&c.ln_u_ratio, &c.ln_phi_floor, &c.relax_rate,
-                                 &c.dp_dlnu, &c.dd_dlnu_i, &c.dd_dlnu_j})
+  for (std::vector<double>* v :
+       {&c.ln_u_ratio, &c.ln_phi_floor, &c.relax_rate, &c.dp_dlnu, &c.dd_dlnu_i,
+        &c.dd_dlnu_j, &c.dlnfloor_dlnu, &c.drelax_dgrowth})
     v->clear();
 }
 
 //! Coefficients of the cell with bin masses sigma and, for porous aggregates, psi (empty:
-//! compact, phi = 1). A bin without mass (psi = 0) is given phi = 1: it enters only the
-//! Jacobian, through the rate of its first collisions. With `derivatives` (porous, for
-//! the Jacobian) also d ln K_ij, d p_ij and d d_ij by ln u of each partner, by forward
-//! differences of 1e-6 in ln u (about twice the cost; the right-hand side needs none).
+//! compact, phi = 1). Each bin's u by bin_porosity() (porosity.hpp): an empty bin is
+//! compact and enters only through the rate of its first collisions. With `derivatives`
+//! (porous, for the Jacobian) also d ln K_ij, d p_ij and d d_ij by ln u of each partner,
+//! by forward differences of 1e-6 in ln u (about twice the cost; the right-hand side
+//! needs none), and those of the floors and relaxation rates.
 //! A caller that evaluates a cell repeatedly passes its `workspace` and the cell's
 //! previous coefficients as `c` (moved in): their storage is reused, and nothing is
 //! allocated once the sizes are set.
@@ -130,14 +136,15 @@ inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
   phi.assign(n, 1.0);
   u.assign(n, 1.0);
   if (porous)
-    for (int k = 0; k < n; ++k)
-      if (sigma[k] > 0.0 && psi[k] > 0.0) {
-        u[k] = psi[k] / sigma[k];
-        phi[k] = 1.0 / u[k];
-      }
+    for (int k = 0; k < n; ++k) {
+      const BinPorosity b = bin_porosity(sigma[k], psi[k], model.empty_scale);
+      u[k] = b.u;
+      phi[k] = b.phi();
+    }
   const Species& sp = model.species;
   const GrowthOptions& o = model.growth;
   const OutcomeSwitches& s = model.outcomes;
+  c.empty_scale = model.empty_scale;
   const auto& m = grid.m;
   bin_properties(grid, phi, sp.rho0, gas, o.drag, ws.bins);
   const BinProperties& bins = ws.bins;
@@ -256,19 +263,36 @@ inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
   if (!o.gas_compaction && !o.self_gravity) return c;
   c.ln_phi_floor.resize(n);
   c.relax_rate.resize(n);
+  if (derivatives) {
+    c.dlnfloor_dlnu.resize(n);
+    c.drelax_dgrowth.resize(n);
+  }
   for (int k = 0; k < n; ++k) {
     // spec §4.3 floors of the bin's mass and St (physics/compaction.hpp)
     c.ln_phi_floor[k] = ln_compaction_floor(m[k], bins.St[k], gas, sp, o);
+    if (derivatives) {  // the gas floor moves with St, so with u (forward difference)
+      const double phi_k = phi[k] * std::exp(-step);
+      const double st_k = stokes_number_of_radius(radius(m[k], phi_k, sp.rho0), phi_k,
+                                                  sp.rho0, gas, o.drag);
+      c.dlnfloor_dlnu[k] =
+          (ln_compaction_floor(m[k], st_k, gas, sp, o) - c.ln_phi_floor[k]) / step;
+    }
     // spec §4.4 with physics/compaction.hpp's constants: t_relax = kRelaxFraction
     // min(t_grow, kRelaxCapOmega/Omega), t_grow from the bin's sticking gain of mass per
-    // unit mass, sum_j K_kj n_j m_j / m_k
+    // unit mass, sum_j K_kj n_j m_j / m_k, over the bins that hold mass (a slightly
+    // negative bin, integration error, would make t_relax negative: an unstable push)
     double growth = 0.0;
     for (int j = 0; j < n; ++j)
-      growth += c.kernel[static_cast<std::size_t>(k) * n + j] * sigma[j] / m[k];
+      if (sigma[j] > 0.0)
+        growth += c.kernel[static_cast<std::size_t>(k) * n + j] * sigma[j] / m[k];
     const double t_grow = 1.0 / (growth + 1e-30);
-    const double t_relax =
-        kRelaxFraction * soft_min(t_grow, kRelaxCapOmega / gas.omega_k);
-    c.relax_rate[k] = 1.0 / t_relax;
+    const double t_soft = soft_min(t_grow, kRelaxCapOmega / gas.omega_k);
+    c.relax_rate[k] = 1.0 / (kRelaxFraction * t_soft);
+    // d r / d growth = r t_grow (t_soft / t_grow)^p: soft_min = (a^-p + b^-p)^(-1/p)
+    // has d/da = (soft_min / a)^(p + 1), and d t_grow / d growth = -t_grow^2
+    if (derivatives)
+      c.drelax_dgrowth[k] =
+          c.relax_rate[k] * t_grow * std::pow(t_soft / t_grow, kSoftMaxPower);
   }
   return c;
 }

@@ -38,9 +38,11 @@
 //! per pair as d_ij = ln(u_p / u_i) (physics/coagulation/porosity.hpp), and a relaxation
 //! up to the static compaction floor per bin (spec §4.3-§4.4, §15.3) may be added.
 //!
-//! The Jacobian is analytic and dense per cell, with p, d and the floors held fixed
-//! (they depend on the state only through the filling factors) unless their
-//! derivatives by ln u_i are given (cell_coefficients computes those of K, p and d).
+//! A bin's u follows the state by the one rule of bin_porosity() (porosity.hpp), with the
+//! coefficients' empty-bin scale. The Jacobian is analytic and dense per cell, with K, p,
+//! d and the floors' levels and rates held fixed (they depend on the state through the
+//! filling factors and, the relaxation rates, the bins' sigma) unless their derivatives
+//! are given (cell_coefficients computes them all).
 //! For the compact model it is exact. Rows and columns are ordered (sigma_0 ...
 //! sigma_{N-1}[, psi_0 ...]), row-major.
 #include <algorithm>
@@ -50,6 +52,7 @@
 #include <vector>
 
 #include "physics/coagulation/mass_grid.hpp"
+#include "physics/coagulation/porosity.hpp"
 #include "physics/smooth_switches.hpp"
 
 namespace panoptic::physics::coagulation {
@@ -75,6 +78,8 @@ struct CellCoefficients {
   std::vector<double> ln_u_ratio;  //!< porous: ln(u_p / u_i) of the product [-]; empty: 0
   std::vector<double> ln_phi_floor;  //!< porous, per bin: ln of the compaction floor
   std::vector<double> relax_rate;    //!< porous, per bin: 1 / t_relax [s^-1]
+  //! porous: the empty-bin scale e of bin_porosity() [g cm^-2] (CellModel's)
+  double empty_scale = kTinyEmptyScale;
   //! porous, Jacobian only: d ln K_ij / d ln u_i at (i, j) (for i = j the derivative of
   //! K_ii by its bin's u); empty: K held fixed [-]
   std::vector<double> dlnk_dlnu;
@@ -83,6 +88,9 @@ struct CellCoefficients {
   //! porous, Jacobian only: d d_ij / d ln u_i and d d_ij / d ln u_j at (i, j), i >= j
   //! (for i = j the first holds the derivative by the bin's u, the second 0) [-]
   std::vector<double> dd_dlnu_i, dd_dlnu_j;
+  //! porous, Jacobian only, per bin: d ln floor_k / d ln u_k (through St_k) [-] and
+  //! d relax_rate_k / d growth_k, growth_k = sum_j K_kj sigma_j / m_k [-] (spec §4.4)
+  std::vector<double> dlnfloor_dlnu, drelax_dgrowth;
 };
 
 //! Softplus sharpness of the push up to the floor (as physics/compaction.hpp) [-].
@@ -183,6 +191,7 @@ class Smoluchowski {
     frag_mass_.assign(n, 0.0);
     frag_psi_.assign(n, 0.0);
     for (int k = 0; k < n; ++k) num_[k] = sigma[k] / m[k];
+    porosities(c, sigma, psi);
     for (int i = 0; i < n; ++i) {
       if (num_[i] == 0.0) continue;
       for (int j = 0; j <= i; ++j) {
@@ -199,10 +208,10 @@ class Smoluchowski {
           if (p.k != i) dsigma[p.k] += p.gain_lo * r_stick;
           dsigma[p.k + 1] += p.gain_hi * r_stick;
           if (porous) {
-            // u_i R and u_j R: the partners' volume measure per collision, written with
-            // psi (m_i u_i n_i = psi_i) so that an empty bin needs no u
-            const double ut = psi[i] * (1.0 - pf) * kk * num_[j] / m[i];
-            const double uj = psi[j] * (1.0 - pf) * kk * num_[i] / m[j];
+            // u_i R and u_j R: the partners' volume measure per collision, u by the rule
+            // of bin_porosity (so that a bin with psi or sigma of the wrong sign carries
+            // volume of its mass's sign, m u, and feeds no runaway of psi)
+            const double ut = u_[i].u * r_stick, uj = u_[j].u * r_stick;
             const double d = has_d ? c.ln_u_ratio[ij] : 0.0;
             const double ed = std::exp(d);
             dpsi[j] -= m[j] * uj;
@@ -227,8 +236,7 @@ class Smoluchowski {
           dsigma[i] -= m[i] * r_frag;
         }
         if (porous) {
-          const double ut = psi[i] * pf * kk * num_[j] / m[i];
-          const double uj = psi[j] * pf * kk * num_[i] / m[j];
+          const double ut = u_[i].u * r_frag, uj = u_[j].u * r_frag;
           dpsi[j] -= m[j] * uj;
           if (p.crater) {
             dpsi[i] += p.target_net * ut;
@@ -248,17 +256,17 @@ class Smoluchowski {
     }
     if (porous && !c.ln_phi_floor.empty()) {
       for (int k = 0; k < n; ++k) {
-        if (sigma[k] <= 0.0 || psi[k] <= 0.0) continue;
         // spec §4.4: d ln phi/dt = softplus_100(ln floor - ln phi) / t_relax, i.e.
-        // d psi/dt = -psi d ln phi/dt at fixed sigma
-        const double z = c.ln_phi_floor[k] - std::log(sigma[k] / psi[k]);
+        // d psi/dt = -psi d ln phi/dt at fixed sigma; ln phi = -ln u (bin_porosity)
+        const double z = c.ln_phi_floor[k] + std::log(u_[k].u);
         dpsi[k] -= psi[k] * softplus(z, kFloorSharpness) * c.relax_rate[k];
       }
     }
   }
 
   //! The dense Jacobian d(dsigma, dpsi)/d(sigma, psi), row-major, nv x nv with nv = N
-  //! (compact, psi empty) or 2N; K, p, d and the floors fixed. Overwrites jac.
+  //! (compact, psi empty) or 2N; the coefficients fixed where their derivatives are not
+  //! given. Overwrites jac.
   void jacobian(const CellCoefficients& c, std::span<const double> sigma,
                 std::span<const double> psi, std::span<double> jac) const {
     const int n = n_;
@@ -271,6 +279,7 @@ class Smoluchowski {
     std::fill(jac.begin(), jac.end(), 0.0);
     num_.resize(n);
     for (int k = 0; k < n; ++k) num_[k] = sigma[k] / m[k];
+    porosities(c, sigma, psi);
     // fragments per column and largest-fragment bin, spread at the end
     g_mass_.assign(static_cast<std::size_t>(nv) * n, 0.0);
     if (porous) g_psi_.assign(static_cast<std::size_t>(nv) * n, 0.0);
@@ -284,13 +293,11 @@ class Smoluchowski {
         const std::size_t ij = static_cast<std::size_t>(i) * n + j;
         const double kk = (i == j ? 0.5 : 1.0) * c.kernel[ij];
         const double pf = frag ? c.p_frag[ij] : 0.0;
-        // K_ij through u_i = psi_i/sigma_i and u_j: a term T ∝ K adds g_i T (d ln u_i /
-        // d psi_i = 1/psi_i, d ln u_i / d sigma_i = -1/sigma_i), and the same for j (once
-        // for i = j); written with T/sigma_i and u_i, which stay finite in nearly empty
-        // bins
+        // K_ij through u_i and u_j: a term T ∝ K adds g_i T d ln u_i (d ln u_i by sigma_i
+        // and psi_i from bin_porosity, bounded in nearly empty bins), and the same for j
+        // (once for i = j)
         double gk_i = 0.0, gk_j = 0.0, gp_i = 0.0, gp_j = 0.0, gd_i = 0.0, gd_j = 0.0;
-        double ui = 1.0, uj = 1.0;
-        if (has_dk && sigma[i] > 0.0 && psi[i] > 0.0 && sigma[j] > 0.0 && psi[j] > 0.0) {
+        if (has_dk) {
           const std::size_t ji = static_cast<std::size_t>(j) * n + i;
           gk_i = c.dlnk_dlnu[ij];
           if (i != j) gk_j = c.dlnk_dlnu[ji];
@@ -302,16 +309,19 @@ class Smoluchowski {
             gd_i = c.dd_dlnu_i[ij];
             gd_j = c.dd_dlnu_j[ij];
           }
-          ui = psi[i] / sigma[i];
-          uj = psi[j] / sigma[j];
         }
         double gi = 0.0, gj = 0.0;  // d ln T / d ln u of the current terms
-        // t_si = T / sigma_i, t_sj = T / sigma_j
-        auto kernel_terms = [&](int row, double t_si, double t_sj) {
-          at(row, n + i) += gi * t_si / ui;
-          at(row, i) -= gi * t_si;
-          at(row, n + j) += gj * t_sj / uj;
-          at(row, j) -= gj * t_sj;
+        // the term T's derivatives through u_i and u_j into `row`, or into the fragments'
+        // column sums `g` (a column's entry of bin q at g(col))
+        auto u_terms = [&](auto&& book, double t) {
+          const BinPorosity &pi = u_[i], &pj = u_[j];
+          book(n + i, gi * t * pi.dlnu_dpsi);
+          book(i, gi * t * pi.dlnu_dsigma);
+          book(n + j, gj * t * pj.dlnu_dpsi);
+          book(j, gj * t * pj.dlnu_dsigma);
+        };
+        auto kernel_terms = [&](int row, double t) {
+          u_terms([&](int col, double v) { at(row, col) += v; }, t);
         };
         for (int outcome = 0; outcome < 2; ++outcome) {
           const double f = outcome == 0 ? 1.0 - pf : pf;
@@ -326,25 +336,29 @@ class Smoluchowski {
           // R = f kk n_i n_j: dR/dsigma_i, dR/dsigma_j
           const double dri = f * kk * num_[j] / m[i];
           const double drj = f * kk * num_[i] / m[j];
+          const double rate = f * kk * num_[i] * num_[j];
           auto mass = [&](int row, double coef) {
             at(row, i) += coef * dri;
             at(row, j) += coef * drj;
-            if (has_dk) kernel_terms(row, coef * dri, coef * drj);
+            if (has_dk) kernel_terms(row, coef * rate);
           };
-          // u_t = psi_i f kk n_j / m_i and u_j = psi_j f kk n_i / m_j
-          const double dut_dpsi = f * kk * num_[j] / m[i];
-          const double dut_dsj = porous ? psi[i] * f * kk / (m[i] * m[j]) : 0.0;
-          const double duj_dpsi = f * kk * num_[i] / m[j];
-          const double duj_dsi = porous ? psi[j] * f * kk / (m[i] * m[j]) : 0.0;
+          // the partners' volume rates U_t = u_i R and U_j = u_j R; the term c_t U_t +
+          // c_j U_j booked by `book(col, derivative)`
+          const double ui = porous ? u_[i].u : 1.0, uj = porous ? u_[j].u : 1.0;
+          const double u_t = ui * rate, u_j = uj * rate;
+          auto vol = [&](auto&& book, double c_t, double c_j) {
+            const BinPorosity &pi = u_[i], &pj = u_[j];
+            book(i, (c_t * ui + c_j * uj) * dri + c_t * u_t * pi.dlnu_dsigma);
+            book(j, (c_t * ui + c_j * uj) * drj + c_j * u_j * pj.dlnu_dsigma);
+            book(n + i, c_t * u_t * pi.dlnu_dpsi);
+            book(n + j, c_j * u_j * pj.dlnu_dpsi);
+            if (has_dk) u_terms(book, c_t * u_t + c_j * u_j);
+          };
           auto vol_t = [&](int row, double coef) {
-            at(n + row, n + i) += coef * dut_dpsi;
-            at(n + row, j) += coef * dut_dsj;
-            if (has_dk) kernel_terms(n + row, coef * ui * dut_dpsi, coef * dut_dsj);
+            vol([&](int col, double v) { at(n + row, col) += v; }, coef, 0.0);
           };
           auto vol_j = [&](int row, double coef) {
-            at(n + row, n + j) += coef * duj_dpsi;
-            at(n + row, i) += coef * duj_dsi;
-            if (has_dk) kernel_terms(n + row, coef * duj_dsi, coef * uj * duj_dpsi);
+            vol([&](int col, double v) { at(n + row, col) += v; }, 0.0, coef);
           };
           if (outcome == 0) {
             mass(j, -m[j]);
@@ -366,9 +380,8 @@ class Smoluchowski {
                 // the product's volume gain[k] e^d U_t through d(u_i, u_j)
                 gi = gd_i;
                 gj = gd_j;
-                const double t_si = ui * dut_dpsi, t_sj = dut_dsj;
-                kernel_terms(n + p.k, p.gain_lo * ed * t_si, p.gain_lo * ed * t_sj);
-                kernel_terms(n + p.k + 1, p.gain_hi * ed * t_si, p.gain_hi * ed * t_sj);
+                kernel_terms(n + p.k, p.gain_lo * ed * u_t);
+                kernel_terms(n + p.k + 1, p.gain_hi * ed * u_t);
               }
             }
             continue;
@@ -393,12 +406,8 @@ class Smoluchowski {
           };
           gm(i) += p.frag_mass * dri;
           gm(j) += p.frag_mass * drj;
-          if (has_dk) {
-            gm(n + i) += gi * p.frag_mass * dri / ui;
-            gm(i) -= gi * p.frag_mass * dri;
-            gm(n + j) += gj * p.frag_mass * drj / uj;
-            gm(j) -= gj * p.frag_mass * drj;
-          }
+          if (has_dk)
+            u_terms([&](int col, double v) { gm(col) += v; }, p.frag_mass * rate);
           if (porous) {
             vol_j(j, -m[j]);
             // fragments' volume: m_j u_j + (crater ? x : m_i) u_t
@@ -407,18 +416,7 @@ class Smoluchowski {
             auto g = [&](int col) -> double& {
               return g_psi_[static_cast<std::size_t>(col) * n + q];
             };
-            g(n + i) += ct * dut_dpsi;
-            g(j) += ct * dut_dsj;
-            g(n + j) += m[j] * duj_dpsi;
-            g(i) += m[j] * duj_dsi;
-            if (has_dk) {
-              const double t_si = ct * ui * dut_dpsi + m[j] * duj_dsi;
-              const double t_sj = ct * dut_dsj + m[j] * uj * duj_dpsi;
-              g(n + i) += gi * t_si / ui;
-              g(i) -= gi * t_si;
-              g(n + j) += gj * t_sj / uj;
-              g(j) -= gj * t_sj;
-            }
+            vol([&](int col, double v) { g(col) += v; }, ct, m[j]);
           }
         }
       }
@@ -430,18 +428,7 @@ class Smoluchowski {
           spread_column(&g_psi_[static_cast<std::size_t>(col) * n], n, col, jac, nv);
       }
     }
-    if (porous && !c.ln_phi_floor.empty()) {
-      for (int k = 0; k < n; ++k) {
-        if (sigma[k] <= 0.0 || psi[k] <= 0.0) continue;
-        // T = -psi softplus(z) r, z = ln floor - ln sigma + ln psi
-        const double z = c.ln_phi_floor[k] - std::log(sigma[k] / psi[k]);
-        const double sp = softplus(z, kFloorSharpness);
-        const double lg = logistic_step(z, kFloorSharpness);
-        const double r = c.relax_rate[k];
-        at(n + k, n + k) += -(sp + lg) * r;
-        at(n + k, k) += psi[k] * lg * r / sigma[k];
-      }
-    }
+    if (porous && !c.ln_phi_floor.empty()) floor_jacobian(c, sigma, psi, jac);
   }
 
  private:
@@ -458,6 +445,60 @@ class Smoluchowski {
     double target_net = 0.0;            //!< mass change of bin i per cratering [g]
     double rem_lo = 0.0, rem_hi = 0.0;  //!< remnant mass into rem_bin, rem_bin+1 [g]
   };
+
+  //! The floors' rows of the Jacobian: T_k = -psi_k softplus(z_k) r_k, z_k = ln floor_k
+  //! + ln u_k (spec §4.4), through psi_k, u_k (z_k and, by St_k, floor_k) and r_k =
+  //! r(growth_k), growth_k = sum_j K_kj sigma_j / m_k over sigma_j > 0
+  //! (cell_coefficients), which moves with every such sigma_j and, through K_kj, every
+  //! u_j. Uses u_ of jacobian().
+  void floor_jacobian(const CellCoefficients& c, std::span<const double> sigma,
+                      std::span<const double> psi, std::span<double> jac) const {
+    const int n = n_, nv = 2 * n;
+    const auto& m = grid_.m;
+    const bool d_floor = !c.dlnfloor_dlnu.empty();
+    const bool d_rate = !c.drelax_dgrowth.empty() && !c.dlnk_dlnu.empty();
+    auto at = [&](int row, int col) -> double& {
+      return jac[static_cast<std::size_t>(row) * nv + col];
+    };
+    // a derivative x by ln u_j, into the columns of sigma_j and psi_j
+    auto by_ln_u = [&](int row, int j, double x) {
+      at(row, j) += x * u_[j].dlnu_dsigma;
+      at(row, n + j) += x * u_[j].dlnu_dpsi;
+    };
+    for (int k = 0; k < n; ++k) {
+      const double z = c.ln_phi_floor[k] + std::log(u_[k].u);
+      const double sp = softplus(z, kFloorSharpness);
+      const double lg = logistic_step(z, kFloorSharpness);
+      const double r = c.relax_rate[k];
+      at(n + k, n + k) -= sp * r;
+      by_ln_u(n + k, k, -psi[k] * lg * r * (1.0 + (d_floor ? c.dlnfloor_dlnu[k] : 0.0)));
+      if (!d_rate) continue;
+      // through r_k: dT/d growth_k, then growth_k by sigma_j and ln u_j
+      const double t_g = -psi[k] * sp * c.drelax_dgrowth[k] / m[k];
+      if (t_g == 0.0) continue;
+      double own = 0.0;  // d growth_k m_k / d ln u_k: every K_kj by u_k
+      for (int j = 0; j < n; ++j) {
+        if (!(sigma[j] > 0.0)) continue;
+        const std::size_t kj = static_cast<std::size_t>(k) * n + j;
+        const double kk = c.kernel[kj];
+        at(n + k, j) += t_g * kk;
+        own += kk * c.dlnk_dlnu[kj] * sigma[j];
+        if (j != k)
+          by_ln_u(n + k, j,
+                  t_g * kk * c.dlnk_dlnu[static_cast<std::size_t>(j) * n + k] * sigma[j]);
+      }
+      by_ln_u(n + k, k, t_g * own);
+    }
+  }
+
+  //! u_k of every bin with its derivatives by sigma_k and psi_k (bin_porosity) into u_
+  //! (porous; empty otherwise).
+  void porosities(const CellCoefficients& c, std::span<const double> sigma,
+                  std::span<const double> psi) const {
+    u_.resize(psi.size());
+    for (std::size_t k = 0; k < psi.size(); ++k)
+      u_[k] = bin_porosity(sigma[k], psi[k], c.empty_scale);
+  }
 
   static std::size_t pair_index(int i, int j) {
     return static_cast<std::size_t>(i) * (i + 1) / 2 + j;
@@ -494,6 +535,7 @@ class Smoluchowski {
   std::vector<Pair> pairs_;
   std::vector<double> weight_, inv_z_;
   mutable std::vector<double> num_, frag_mass_, frag_psi_, g_mass_, g_psi_;
+  mutable std::vector<BinPorosity> u_;
 };
 
 }  // namespace panoptic::physics::coagulation

@@ -18,7 +18,9 @@ BinPlanetesimals::BinState BinPlanetesimals::bin_state(int cell, int k,
                                                        std::span<const double> y) const {
   const double s = y[layout_.index(cell, dist_.bin_slot(k))];
   if (!dist_.porous()) return {s, s, 1.0};
-  return {s, y[layout_.index(cell, dist_.psi_slot(k))], dist_.phi(cell, k, y)};
+  const auto u = dist_.porosity(cell, k, y);
+  return {s, y[layout_.index(cell, dist_.psi_slot(k))], u.phi(), -u.dlnu_dsigma,
+          -u.dlnu_dpsi};
 }
 
 template <class T>
@@ -149,15 +151,14 @@ void BinPlanetesimals::add_jacobian(double, std::span<const double> y,
   for (int i = 0; i < layout_.n_cells(); ++i) {
     const physics::LocalGas& g = dist_.bin_gas(i);
     // J(row, bin k) += scale dv/d(sigma_k, psi_k), v in bin k's directions: 0 and 1 its
-    // sigma_k and psi_k where a law is linear in them, 2 ln phi_k (through St_k), with
-    // ln phi = ln sigma - ln psi. A law is sigma (or psi) times a function of St, so its
-    // derivative by ln phi carries that factor and the divisions below stay finite.
+    // sigma_k and psi_k where a law is linear in them, 2 ln phi_k (through St_k),
+    // chained to sigma_k and psi_k by the derivatives of SizeDistribution::porosity
+    // (bounded in nearly empty bins).
     const auto add = [&](long row, int k, const ADCell& v, double scale) {
       const BinState& b = state[k];
       const double d_lnphi = v.derivatives()[2];
-      const double d_sigma =
-          v.derivatives()[0] + (d_lnphi != 0.0 ? d_lnphi / b.sigma : 0.0);
-      const double d_psi = v.derivatives()[1] - (d_lnphi != 0.0 ? d_lnphi / b.psi : 0.0);
+      const double d_sigma = v.derivatives()[0] + d_lnphi * b.dlnphi_dsigma;
+      const double d_psi = v.derivatives()[1] + d_lnphi * b.dlnphi_dpsi;
       if (d_sigma != 0.0)
         jac.add(row, layout_.index(i, dist_.bin_slot(k)), scale * d_sigma);
       if (porous && d_psi != 0.0)
@@ -169,9 +170,9 @@ void BinPlanetesimals::add_jacobian(double, std::span<const double> y,
       const BinState& v = state[k];
       sig[k] = ad_seed<ADCell>(v.sigma, 0);
       psi[k] = ad_seed<ADCell>(v.psi, 1);
-      // phi follows the state where the bin holds mass and volume (SizeDistribution::phi)
+      // phi follows the state by SizeDistribution::porosity (its derivatives in add)
       ADCell phi(v.phi);
-      if (porous && v.sigma > 0.0 && v.psi > 0.0) phi.derivatives()[2] = v.phi;
+      if (porous) phi.derivatives()[2] = v.phi;
       bins[k] = bin(i, k, sig[k], psi[k], phi, g);
       rho_mid += bins[k].rho_mid.value();
     }

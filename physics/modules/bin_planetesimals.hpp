@@ -98,9 +98,10 @@ class BinPlanetesimals : public PhysicsModule, public PlanetesimalChannels {
   //! derivative by rho_mid.
   std::pair<double, double> trigger(double rho_mid, const physics::LocalGas& g) const;
   //! The state of bin k of `cell`: {sigma_k, psi_k, phi_k} (compact: psi_k = sigma_k,
-  //! phi_k = 1).
+  //! phi_k = 1) and d ln phi_k / d sigma_k, d psi_k (SizeDistribution::porosity).
   struct BinState {
     double sigma, psi, phi;
+    double dlnphi_dsigma = 0.0, dlnphi_dpsi = 0.0;
   };
   BinState bin_state(int cell, int k, std::span<const double> y) const;
 

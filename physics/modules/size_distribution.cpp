@@ -31,7 +31,8 @@ SizeDistribution::SizeDistribution(StateLayout& layout, const Grid& grid,
                                   : coag::FragmentationModel{}),
       porous_(options.growth.porosity),
       n_bins_(engine_.size()),
-      mass_unit_(dust_mass) {
+      mass_unit_(dust_mass),
+      empty_scale_(coag::kEmptyBinFraction * sigma_scale) {
   layout.allow_wide_cells();
   for (int k = 0; k < n_bins_; ++k) {
     // no >= 0 constraint, as Sigma_d of the single-size model (dust_transport.cpp says
@@ -77,7 +78,7 @@ double SizeDistribution::first_bin_mass(const SizeDistributionOptions& options,
 coag::CellModel SizeDistribution::cell_model(int cell) const {
   // DustPy's outcome model, with erosion Krijt et al.'s on the unequal pairs (spec §15.2)
   const physics::Species& sp = species_[cell];
-  return {sp, opt_.growth, coag::outcome_switches(opt_.growth, sp)};
+  return {sp, opt_.growth, coag::outcome_switches(opt_.growth, sp), empty_scale_};
 }
 
 void SizeDistribution::build_cell(int cell, const physics::LocalGas& gas) const {
@@ -102,11 +103,14 @@ void SizeDistribution::refresh(std::span<const double> y) const {
 }
 
 double SizeDistribution::phi(int cell, int k, std::span<const double> y) const {
-  if (!porous_) return 1.0;
-  // as the engine (cell_coefficients): a bin without mass or volume is compact
-  const double s = y[layout_.index(cell, bin_slot(k))],
-               p = y[layout_.index(cell, psi_slot(k))];
-  return s > 0.0 && p > 0.0 ? s / p : 1.0;
+  return porous_ ? porosity(cell, k, y).phi() : 1.0;
+}
+
+coag::BinPorosity SizeDistribution::porosity(int cell, int k,
+                                             std::span<const double> y) const {
+  // the engine's rule (cell_coefficients, Smoluchowski)
+  return coag::bin_porosity(y[layout_.index(cell, bin_slot(k))],
+                            y[layout_.index(cell, psi_slot(k))], empty_scale_);
 }
 
 void SizeDistribution::update_porous(std::span<const double> y, bool coefficients,
@@ -127,14 +131,7 @@ void SizeDistribution::update_porous(std::span<const double> y, bool coefficient
     std::copy(bins.St.begin(), bins.St.end(),
               st_.begin() + static_cast<std::ptrdiff_t>(off));
     for (int k = 0; derivatives && k < nb; ++k) {
-      // d St / d ln u by the forward difference of cell_coefficients (1e-6 in ln u); 0
-      // where phi does not follow the state (an empty bin)
-      const double s = y[layout_.index(i, bin_slot(k))],
-                   p = y[layout_.index(i, psi_slot(k))];
-      if (!(s > 0.0 && p > 0.0)) {
-        dst_dlnu_[off + k] = 0.0;
-        continue;
-      }
+      // d St / d ln u by the forward difference of cell_coefficients (1e-6 in ln u)
       const double step = 1e-6, phi_step = phi_k[k] * std::exp(-step);
       const double st = physics::stokes_number_of_radius(
           physics::radius(m[k], phi_step, rho0), phi_step, rho0, gas, opt_.growth.drag);
@@ -412,14 +409,15 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
               jac.add(t.row, cols[j], scale * flow.derivatives()[j]);
           if (d_far != 0.0) jac.add(t.row, layout_.index(face.far, slot), scale * d_far);
           for (int side = 0; side < 2; ++side) {
-            // St of the cell by ln u = ln psi - ln sigma
+            // St of the cell by ln u (bin_porosity's derivatives)
             const int c = side == 0 ? a : b;
             const double g = dst_dlnu_[static_cast<std::size_t>(c) * nb + k];
             if (d_st[side] == 0.0 || g == 0.0) continue;
-            const double sig = y[layout_.index(c, bin_slot(k))];
-            const double psi = y[layout_.index(c, psi_slot(k))];
-            jac.add(t.row, layout_.index(c, bin_slot(k)), -scale * d_st[side] * g / sig);
-            jac.add(t.row, layout_.index(c, psi_slot(k)), scale * d_st[side] * g / psi);
+            const coag::BinPorosity u = porosity(c, k, y);
+            jac.add(t.row, layout_.index(c, bin_slot(k)),
+                    scale * d_st[side] * g * u.dlnu_dsigma);
+            jac.add(t.row, layout_.index(c, psi_slot(k)),
+                    scale * d_st[side] * g * u.dlnu_dpsi);
           }
         }
       }

@@ -95,8 +95,13 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   int cell_vars() const { return porous_ ? 2 * n_bins_ : n_bins_; }
   //! Slot of psi_k (porous only).
   int psi_slot(int k) const { return slot0_ + n_bins_ + k; }
-  //! Filling factor of bin k of `cell`: sigma_k/psi_k, 1 for an empty bin or compact [-].
+  //! Filling factor of bin k of `cell`: sigma_k/psi_k by the rule of bin_porosity()
+  //! (1 for an empty bin or compact) [-].
   double phi(int cell, int k, std::span<const double> y) const;
+  //! u = 1/phi of bin k of `cell` with its derivatives by sigma_k and psi_k
+  //! (physics/coagulation/porosity.hpp, bin_porosity; porous only).
+  physics::coagulation::BinPorosity porosity(int cell, int k,
+                                             std::span<const double> y) const;
   //! The coagulation coefficients of `cell` at state y (as the right-hand side uses
   //! them).
   physics::coagulation::CellCoefficients coefficients(int cell,
@@ -204,6 +209,7 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   bool porous_ = false;
   int n_bins_ = 0, slot0_ = -1, g_out_ = -1;
   double mass_unit_ = 1.0;
+  double empty_scale_ = 0.0;       //!< e of bin_porosity() [g cm^-2]
   std::vector<int> monitor_slot_;  //!< per face: global slot of its booking, or -1
   int snow_face_ = -1, g_sub_ = -1;
   double f_ice_ = 0.0;

@@ -253,7 +253,8 @@ double counted_eps_mid(const Simulation& sim, int cell, const std::vector<double
 // The module's Jacobian alone against central differences of its right-hand side, on
 // perturbed states (every bin filled), with eps_crit inside the trigger's switch in one
 // cell (the dense block of the trigger) and St_pl inside the bins' St range; compact and
-// porous (u_k = 1 .. 10: St through phi_k), d16 and s18.
+// porous (u_k = 1.1 .. 10: St through phi_k; off the kink of bin_porosity at u = 1), d16
+// and s18.
 TEST(BinPlanetesimals, JacobianMatchesFiniteDifferences) {
   for (const char* porous : {"porosity.enabled=false", "porosity.enabled=true"})
     for (const char* si : {"planetesimals.si=\"d16\"", "planetesimals.si=\"s18\""}) {
@@ -270,7 +271,7 @@ TEST(BinPlanetesimals, JacobianMatchesFiniteDifferences) {
         for (int i = 0; d->porous() && i < sim.grid().n_cells(); ++i)
           for (int k = 0; k < d->n_bins(); ++k)
             y[L.index(i, d->psi_slot(k))] =
-                (1.0 + 9.0 * k / d->n_bins()) * y[L.index(i, d->bin_slot(k))];
+                (1.1 + 9.0 * k / d->n_bins()) * y[L.index(i, d->bin_slot(k))];
         return y;
       };
       const int cell = 6;

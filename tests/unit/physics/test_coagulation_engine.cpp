@@ -60,9 +60,10 @@ std::vector<double> synthetic_sigma(int n) {
     s[k] = std::exp(-0.5 * std::pow((k - 0.4 * n) / 6.0, 2)) + 1e-3;
   return s;
 }
+// u_k = psi_k/sigma_k from e^0.1 up: off the kink of bin_porosity at u = 1 (phi <= 1)
 std::vector<double> synthetic_psi(const std::vector<double>& sigma) {
   std::vector<double> p(sigma.size());
-  for (std::size_t k = 0; k < p.size(); ++k) p[k] = sigma[k] * std::exp(0.15 * k);
+  for (std::size_t k = 0; k < p.size(); ++k) p[k] = sigma[k] * std::exp(0.1 + 0.15 * k);
   return p;
 }
 
@@ -142,7 +143,7 @@ TEST(CoagulationEngine, PorousJacobianOfTheDiskCellMatchesFullDifferences) {
   for (int k = 0; k < n; ++k) {
     const double mk = eng.grid().m[k];
     y[k] = 1e-3 * std::pow(mk / 1e-12, 1.0 / 6.0) * std::exp(-mk / 1e2) + 1e-12;
-    y[n + k] = y[k] * std::exp(0.1 * k);
+    y[n + k] = y[k] * std::exp(0.1 * (k + 1));  // u > 1: off bin_porosity's kink
   }
   auto coefficients = [&](const std::vector<double>& yy) {
     return cell_coefficients(eng, std::span<const double>(yy.data(), n),

@@ -126,8 +126,8 @@ TEST(SizeDistributionPorous, CoagulationConservesMassAndBooksTheVolume) {
         const std::size_t ab = static_cast<std::size_t>(a) * nb + b;
         const double sa = y[L.index(i, d->bin_slot(a))],
                      sb = y[L.index(i, d->bin_slot(b))];
-        const double ua = y[L.index(i, d->psi_slot(a))] / sa;
-        const double ub = y[L.index(i, d->psi_slot(b))] / sb;
+        const double ua = d->porosity(i, a, y).u;  // psi/sigma to e/sigma (bin_porosity)
+        const double ub = d->porosity(i, b, y).u;
         const double rate =
             (a == b ? 0.5 : 1.0) * c.kernel[ab] * (sa / m[a]) * (sb / m[b]);
         const double p = c.p_frag.empty() ? 0.0 : c.p_frag[ab];
@@ -150,8 +150,9 @@ TEST(SizeDistributionPorous, CoagulationConservesMassAndBooksTheVolume) {
 // 1e4: coagulation (sticking, fragmentation, cratering, the floors), drift and diffusion
 // with St(phi), the viscous gas. Measured: row-scaled error 2.2e-5, entry error 1.9e-3,
 // both in the coagulation blocks: the coefficients' derivatives by ln u are forward
-// differences of 1e-6 (cell_coefficients); the floors' ln phi_floor(St(u)) and
-// relaxation rate are held fixed. `sets` change the scene.
+// differences of 1e-6 (cell_coefficients; the floors' levels and relaxation rates are
+// followed, CoagulationPorous.JacobianFollowsTheFloorsAndTheirRelaxationRates). `sets`
+// change the scene.
 void expect_porous_jacobian(const std::vector<std::string>& sets) {
   Simulation sim(porous_scene(sets));
   const auto& L = sim.model().layout();

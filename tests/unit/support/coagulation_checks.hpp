@@ -68,10 +68,12 @@ inline double jacobian_error(const Smoluchowski& eng, const CellCoefficients& c,
 }
 
 //! max |(J - J_fd) y_j| / max |J_fd y_j| with the coefficients rebuilt from the state
-//! at every difference (`coefficients(y)`), J fed the coefficients' derivatives.
-template <class Coefficients>
-double full_jacobian_error(const Smoluchowski& eng, Coefficients coefficients,
-                           std::vector<double> y) {
+//! at every difference (`coefficients(y)`), J fed the coefficients' derivatives (after
+//! `strip`, which may remove some, to show that the check sees them).
+template <class Coefficients, class Strip = void (*)(CellCoefficients&)>
+double full_jacobian_error(
+    const Smoluchowski& eng, Coefficients coefficients, std::vector<double> y,
+    Strip strip = [](CellCoefficients&) {}) {
   const int n = eng.size(), nv = 2 * n;
   auto f = [&](const std::vector<double>& yy) {
     const CellCoefficients c = coefficients(yy);
@@ -82,7 +84,9 @@ double full_jacobian_error(const Smoluchowski& eng, Coefficients coefficients,
     return out;
   };
   std::vector<double> jac(static_cast<std::size_t>(nv) * nv);
-  eng.jacobian(coefficients(y), std::span<const double>(y.data(), n),
+  CellCoefficients c = coefficients(y);
+  strip(c);
+  eng.jacobian(c, std::span<const double>(y.data(), n),
                std::span<const double>(y.data() + n, n), jac);
   const FdComparison d = compare_with_differences(f, jac, std::move(y), true);
   std::printf("full Jacobian error %.2e\n", d.err / d.max_fd);
