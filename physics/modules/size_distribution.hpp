@@ -28,8 +28,10 @@
 //! gas of the last refresh, as compact). Jacobian: the engine's dense 2N x 2N block with
 //! the derivatives of K, p_frag and the product porosity by ln u (cell_coefficients with
 //! derivatives; forward differences of 1e-6), and the face flows' dependence on u through
-//! St (d St/d ln u by the same forward difference); the compaction floors' dependence on
-//! u through St is held fixed.
+//! St (d St/d ln u by the same forward difference), and the compaction floors' levels and
+//! relaxation rates (cell_coefficients). A bin's u is bin_porosity()'s
+//! (physics/coagulation/porosity.hpp), with the empty-bin scale kEmptyBinFraction of
+//! sigma_scale.
 //!
 //! Snow line (spec §1.7, §6.3, §15.4; set_snowline()): every cell coagulates with its
 //! own monomer species (silicate inside r_snow, ice outside, as the single-size model),
