@@ -51,6 +51,9 @@ struct StaticField {
   std::string units, description;
 };
 
+//! "klu", "block" or "gmres" (solver.linear's choices).
+const char* linear_solver_name(LinearSolverKind kind);
+
 class Simulation {
  public:
   explicit Simulation(const Config& cfg);
@@ -72,6 +75,9 @@ class Simulation {
   const CellGas* cell_gas() const { return cell_gas_.get(); }
 
   std::vector<double> initial_state() const;
+  //! The solver of the Newton systems, solver.linear with "auto" resolved: block for a
+  //! size distribution whose pattern the block solver takes, else KLU.
+  LinearSolverKind linear_solver() const;
   //! Where the gas evolves: sets the pressure-gradient parameter eta and the radial gas
   //! velocity that the particle laws see (CellGas::set_pressure_and_flow) from the gas
   //! at state y. Called where CVODE starts or restarts (every snapshot, with

@@ -57,21 +57,19 @@ std::vector<KeySpec> solver_keys() {
               "iterations and steps (tests/bench/README.md, Performance); 0: CVODE's own",
               0, 1e6),
       choice(
-          "solver.linear", "klu", {"klu", "block", "gmres"},
-          "the solver of CVODE's Newton systems: klu = KLU's sparse LU of the whole "
-          "matrix, for single-size runs (a few variables per cell) and for porous "
-          "size distributions (one porous run failed with block: "
-          "tests/bench/results/block_solver.md); block = dense LU of each cell's block "
-          "and block-banded elimination over the cells (src/solver/block_banded_lu.hpp), "
-          "2-3x faster factorisations where the cells hold many coupled variables: "
-          "compact size distributions (the DustPy disk in half the CPU time); refused "
-          "(exit with the reason) where "
-          "a cell's equations read a global variable; gmres = CVODE's SPGMR with "
-          "products "
-          "from the assembled Jacobian, right-preconditioned by the LU of each cell's "
-          "dense block (src/solver/cell_block_preconditioner.hpp): no fill between "
-          "cells, the cells' coupling left to the iteration "
-          "(tests/bench/results/krylov_solver.md)"),
+          "solver.linear", "auto", {"auto", "klu", "block", "gmres"},
+          "the solver of CVODE's Newton systems: auto = block for a size distribution "
+          "(model.kind = \"distribution\") whose Newton systems it can solve, else klu; "
+          "klu = KLU's sparse LU of the whole matrix, for single-size runs (a few "
+          "variables per cell); block = dense LU of each cell's block and block-banded "
+          "elimination over the cells (src/solver/block_banded_lu.hpp): a size "
+          "distribution in half KLU's CPU time, its mass budget closing to round-off; "
+          "refused (exit with the reason) where a cell's equations read a global "
+          "variable; gmres = CVODE's SPGMR with products from the assembled Jacobian, "
+          "right-preconditioned by the LU of each cell's dense block "
+          "(src/solver/cell_block_preconditioner.hpp): the fastest on size "
+          "distributions, its mass budget closing only to the Krylov tolerance, slow on "
+          "single-size runs (tests/bench/results/krylov_solver.md)"),
       flag("solver.reinit_at_snapshots", "true",
            "reinitialise CVODE at every snapshot time, so that a run restarted from a "
            "checkpoint is bit-for-bit identical to one never stopped; with gas.evolve "

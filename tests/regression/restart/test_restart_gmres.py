@@ -29,7 +29,7 @@ def main():
     c = Checks()
     klu = f"{args.workdir}/klu.h5"
     gmres = f"{args.workdir}/gmres.h5"
-    p_klu = panoptic(args.exe, SCENE, "-o", klu, "--overwrite")
+    p_klu = panoptic(args.exe, SCENE, "-o", klu, "--overwrite", sets=['solver.linear="klu"'])
     p = panoptic(args.exe, SCENE, "-o", gmres, "--overwrite", sets=GMRES)
     c.check("Newton systems solved by gmres (solver.linear)" in p.stdout
             and "Newton systems solved by klu (solver.linear)" in p_klu.stdout,

@@ -221,7 +221,7 @@ void expect_block_run_matches_klu(const std::vector<std::string>& sets, double t
   Simulation sim(load_scene(
       std::string(PANOPTIC_SOURCE_DIR) + "/params/tests/distribution_small.toml", sets));
   IntegratorOptions opt = sim.integrator_options();
-  ASSERT_EQ(opt.linear, LinearSolverKind::klu);  // the default
+  opt.linear = LinearSolverKind::klu;
   const double t_end = t_yr * units::kYr;
   const std::vector<double> y0 =
       filled ? testing::perturbed_state(sim, 1) : sim.initial_state();
@@ -260,12 +260,12 @@ TEST(BlockBandedSolver, DistributionRunMatchesKluVanLeer) {
                                300.0, true, 2, "distribution, van Leer, static gas");
 }
 
-// solver.linear: klu by default, an unknown solver refused naming the choices; a
+// solver.linear: auto by default, an unknown solver refused naming the choices; a
 // restart may change it (a numerical choice, as solver.rtol).
 TEST(BlockBandedSolver, SolverLinearKey) {
   const std::string small =
       std::string(PANOPTIC_SOURCE_DIR) + "/params/tests/distribution_small.toml";
-  EXPECT_EQ(load_scene(small, {}).str("solver.linear"), "klu");
+  EXPECT_EQ(load_scene(small, {}).str("solver.linear"), "auto");
   EXPECT_EQ(load_scene(small, std::vector<std::string>{"solver.linear=\"block\""})
                 .str("solver.linear"),
             "block");
@@ -275,6 +275,28 @@ TEST(BlockBandedSolver, SolverLinearKey) {
   EXPECT_NE(m.find("solver.linear"), std::string::npos) << m;
   EXPECT_NE(m.find("klu, block"), std::string::npos) << m;
   EXPECT_TRUE(may_change_on_restart("solver.linear"));
+}
+
+// solver.linear = "auto": the block solver for a size distribution, KLU for the single
+// size; a choice given by name is kept.
+TEST(BlockBandedSolver, AutoPicksBlockForDistributionsAndKluElsewhere) {
+  const std::string dir = std::string(PANOPTIC_SOURCE_DIR) + "/params/";
+  const auto solver = [&](const std::string& scene, std::vector<std::string> sets) {
+    return Simulation(load_scene(dir + scene, sets)).linear_solver();
+  };
+  EXPECT_EQ(solver("tests/distribution_small.toml", {}), LinearSolverKind::block);
+  EXPECT_EQ(solver("tests/distribution_small.toml", {"porosity.enabled=true"}),
+            LinearSolverKind::block);
+  EXPECT_EQ(solver("fiducial.toml", {}), LinearSolverKind::klu);
+  EXPECT_EQ(solver("tests/distribution_small.toml", {"solver.linear=\"klu\""}),
+            LinearSolverKind::klu);
+  EXPECT_EQ(solver("fiducial.toml", {"solver.linear=\"block\""}),
+            LinearSolverKind::block);
+  EXPECT_EQ(solver("tests/distribution_small.toml", {"solver.linear=\"gmres\""}),
+            LinearSolverKind::gmres);
+  EXPECT_STREQ(linear_solver_name(LinearSolverKind::block), "block");
+  EXPECT_STREQ(linear_solver_name(LinearSolverKind::klu), "klu");
+  EXPECT_STREQ(linear_solver_name(LinearSolverKind::gmres), "gmres");
 }
 
 }  // namespace
