@@ -107,6 +107,67 @@ T dv2_vertical(const T& St1, const T& St2, const LocalGasT<G>& gas) {
   return d * d;
 }
 
+//! The terms of a pair's speed (spec §3.2-§3.5) that depend on one partner only. A
+//! pair's speed is dv2_pair_of() of its partners' terms: dv_total builds the two, the
+//! size distribution builds them once per mass bin for its N^2 pairs
+//! (physics/coagulation/pair_speed_evaluator.hpp), so both evaluate one formula.
+template <class T>
+struct PartnerSpeedTerms {
+  using Scalar = T;
+  T st;     //!< Stokes number [-]
+  T v_r;    //!< radial drift velocity (spec §3.2) [cm s^-1]
+  T v_phi;  //!< azimuthal offset from Keplerian (spec §3.3) [cm s^-1]
+  T v_z;    //!< settling speed at z = h_d (spec §3.4) [cm s^-1]
+  T g;      //!< St^2 / (St + St_eta) of OC07 eq. 27 (spec §3.5) [-]
+  T heavy;  //!< 1 / (1 + St) of OC07 eq. 29 (spec §3.5) [-]
+};
+
+//! OC07's St_eta = t_eta/t_L = Re^-1/2 (spec §3.5) [-].
+template <class G>
+G oc07_st_eta(const LocalGasT<G>& gas) {
+  using std::sqrt;
+  return 1.0 / sqrt(gas.reynolds());
+}
+
+//! OC07's normalisation V_g^2 = f alpha c_s^2 (spec §3.5, §10.1) [cm^2 s^-2].
+template <class G>
+double oc07_vg2(const LocalGasT<G>& gas, const TurbulenceModel& model) {
+  return model.vg2_factor * gas.alpha * gas.c_s * gas.c_s;
+}
+
+//! The terms of the partner of Stokes number St in the gas `gas` whose OC07 St_eta is
+//! st_eta (oc07_st_eta).
+template <class T, class G>
+PartnerSpeedTerms<T> partner_speed_terms(const T& St, const LocalGasT<G>& gas,
+                                         const G& st_eta) {
+  const T v_r = v_radial_drift(St, gas);
+  const T v_phi = v_azimuthal_offset(St, gas);
+  const T v_z = v_settling(St, gas);
+  const T g = St * St / (St + st_eta);
+  const T heavy = 1.0 / (1.0 + St);
+  return {St, v_r, v_phi, v_z, g, heavy};
+}
+
+//! OC07's regime weights at St_hi (spec §3.5) [-].
+template <class T>
+struct Oc07Weights {
+  T w_eta;  //!< log_step(St_hi; St_eta, w)
+  T w_one;  //!< log_step(St_hi; 1, w)
+};
+
+//! The regime weights computed at St_hi; the weights of dv2_turbulent_of.
+template <class G>
+struct Oc07WeightsAtStHi {
+  G st_eta;               //!< OC07's St_eta (oc07_st_eta) [-]
+  double half_width_dex;  //!< TurbulenceModel::blend_half_width_dex [dex]
+  template <class T, class P>
+  Oc07Weights<T> operator()(const T& s_hi, const P& /*p*/, const P& /*q*/) const {
+    const T w_eta = log_step(s_hi, st_eta, half_width_dex);
+    const T w_one = log_step(s_hi, 1.0, half_width_dex);
+    return {w_eta, w_one};
+  }
+};
+
 //! Turbulence, Ormel & Cuzzi (2007) closed forms (spec §3.5) [cm^2 s^-2].
 //! With St1 >= St2, eps = St2/St1, St_eta = Re^-1/2, V_g^2 = f alpha c_s^2:
 //!   tight,  OC07 eq. 27:
@@ -127,25 +188,50 @@ T dv2_vertical(const T& St1, const T& St2, const LocalGasT<G>& gas) {
 //!   St_hi = soft_max(St1, St2, 32),  eps = soft_min(St1, St2, 32) / St_hi.
 //! For St2/St1 <= 0.8 this equals the hard order to < 1e-4 (1e-11 for the eps = 0.5
 //! pair); for equal sizes it raises St_hi by 2^(1/32) = 1.022 and gives eps = 0.958.
+//! Evaluated from the partners' terms p, q (PartnerSpeedTerms, or a type derived from
+//! it); vg2 = oc07_vg2; weights(St_hi, p, q) returns the Oc07Weights at St_hi
+//! (Oc07WeightsAtStHi, or the same values found another way).
+template <class P, class Weights>
+typename P::Scalar dv2_turbulent_of(const P& p, const P& q, double vg2, double y_a,
+                                    const Weights& weights) {
+  using T = typename P::Scalar;
+  const T tight = (p.st - q.st) / (p.st + q.st) * (p.g - q.g);
+  const T s_hi = soft_max(p.st, q.st, kOrderPower);
+  const T s_lo = p.st * q.st / s_hi;  // soft_min(St1, St2) with its soft_max
+  const T eps = s_lo / s_hi;
+  const T inter = beta_oc07(eps, y_a) * s_hi;
+  const T heavy = p.heavy + q.heavy;
+  const Oc07Weights<T> w = weights(s_hi, p, q);
+  const T upper = (1.0 - w.w_one) * inter + w.w_one * heavy;
+  return vg2 * ((1.0 - w.w_eta) * tight + w.w_eta * upper);
+}
+
+//! Total dv^2 of a pair (spec §3.6) from its partners' terms p, q and its Brownian term
+//! dv2_brownian (spec §3.1): the sum of the five squared components [cm^2 s^-2];
+//! vg2, y_a and weights as in dv2_turbulent_of.
+template <class P, class Weights>
+typename P::Scalar dv2_pair_of(const P& p, const P& q, const typename P::Scalar& brownian,
+                               double vg2, double y_a, const Weights& weights) {
+  using T = typename P::Scalar;
+  const T d_r = p.v_r - q.v_r;
+  const T d_phi = p.v_phi - q.v_phi;
+  const T d_z = p.v_z - q.v_z;
+  const T radial = d_r * d_r;
+  const T azimuthal = d_phi * d_phi;
+  const T vertical = d_z * d_z;
+  const T turbulent = dv2_turbulent_of(p, q, vg2, y_a, weights);
+  return brownian + radial + azimuthal + vertical + turbulent;
+}
+
+//! Turbulence of the pair (St1, St2), dv2_turbulent_of above [cm^2 s^-2].
 template <class T, class G>
 T dv2_turbulent(const T& St1, const T& St2, const LocalGasT<G>& gas,
                 const TurbulenceModel& model = {}) {
-  // OC07 normalisation V_g^2 and St_eta = t_eta/t_L = Re^-1/2
-  const double vg2 = model.vg2_factor * gas.alpha * gas.c_s * gas.c_s;
-  using std::sqrt;
-  const G st_eta = 1.0 / sqrt(gas.reynolds());
-  const T g1 = St1 * St1 / (St1 + st_eta);
-  const T g2 = St2 * St2 / (St2 + st_eta);
-  const T tight = (St1 - St2) / (St1 + St2) * (g1 - g2);
-  const T s_hi = soft_max(St1, St2, kOrderPower);
-  const T s_lo = soft_min(St1, St2, kOrderPower);
-  const T eps = s_lo / s_hi;
-  const T inter = beta_oc07(eps, model.y_a) * s_hi;
-  const T heavy = 1.0 / (1.0 + St1) + 1.0 / (1.0 + St2);
-  const T w_eta = log_step(s_hi, st_eta, model.blend_half_width_dex);
-  const T w_one = log_step(s_hi, 1.0, model.blend_half_width_dex);
-  const T upper = (1.0 - w_one) * inter + w_one * heavy;
-  return vg2 * ((1.0 - w_eta) * tight + w_eta * upper);
+  const G st_eta = oc07_st_eta(gas);
+  const PartnerSpeedTerms<T> p = partner_speed_terms(St1, gas, st_eta);
+  const PartnerSpeedTerms<T> q = partner_speed_terms(St2, gas, st_eta);
+  return dv2_turbulent_of(p, q, oc07_vg2(gas, model), model.y_a,
+                          Oc07WeightsAtStHi<G>{st_eta, model.blend_half_width_dex});
 }
 
 //! The five squared components of a pair [cm^2 s^-2] and their quadrature sum.
@@ -176,7 +262,12 @@ template <class T, class G>
 T dv_total(const T& St1, const T& St2, const T& m1, const T& m2, const LocalGasT<G>& gas,
            const TurbulenceModel& model = {}) {
   using std::sqrt;
-  const T dv2 = relative_velocity2(St1, St2, m1, m2, gas, model).total();
+  const G st_eta = oc07_st_eta(gas);
+  const PartnerSpeedTerms<T> p = partner_speed_terms(St1, gas, st_eta);
+  const PartnerSpeedTerms<T> q = partner_speed_terms(St2, gas, st_eta);
+  const T brownian = dv2_brownian(m1, m2, gas);
+  const T dv2 = dv2_pair_of(p, q, brownian, oc07_vg2(gas, model), model.y_a,
+                            Oc07WeightsAtStHi<G>{st_eta, model.blend_half_width_dex});
   return sqrt(dv2);
 }
 
