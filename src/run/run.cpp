@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@
 #include "src/run/start.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
+#include "src/solver/integrator.hpp"
 
 namespace fs = std::filesystem;
 
@@ -74,8 +76,10 @@ int run_scene(const RunArgs& a) {
   const fs::path chk_path = checkpoint_path(out.path());
   // 3 integrator, from the start's state with the run's statistics so far
   sim.refresh_local_gas(y0);  // eta and v_g of the particle laws (evolving gas)
-  CvodeIntegrator cvode(sim.model(), times.front(), y0, sim.integrator_options());
-  cvode.carry_stats(start_point.stats);
+  const std::unique_ptr<Integrator> integrator =
+      make_integrator(sim.model(), times.front(), y0, sim.integrator_options());
+  Integrator& solver = *integrator;
+  solver.carry_stats(start_point.stats);
   const auto start = WallClock::now();
   // What a checkpoint of the snapshot just written holds; `last` is kept in memory so
   // that a stop between snapshots can checkpoint the last one. Its row digests are
@@ -88,7 +92,7 @@ int run_scene(const RunArgs& a) {
                       layout.n_cells(),
                       index,
                       cfg.resolved_toml(),
-                      cvode.stats(),
+                      solver.stats(),
                       wall0 + seconds_since(start),
                       fs::absolute(out.path()).string(),
                       out.run_id(),
@@ -121,9 +125,10 @@ int run_scene(const RunArgs& a) {
     write_checkpoint(chk_path, last);
     checkpointed = last.snapshot_index;
   };
-  // 4 integrate to each snapshot time: CVODE is reinitialised at each (so a restart is
-  // bit for bit); a checkpoint is written at a snapshot when due; a stop checkpoints the
-  // last one (a stop signalled during the set-up above: at the first step)
+  // 4 integrate to each snapshot time: the integrator is reinitialised at each (so a
+  // restart is bit for bit); a checkpoint is written at a snapshot when due; a stop
+  // checkpoints the last one (a stop signalled during the set-up above: at the first
+  // step)
   const bool reinit = cfg.flag("solver.reinit_at_snapshots");
   CheckpointSchedule schedule(cfg.real("checkpoint.every_wall_s"),
                               cfg.integer("checkpoint.every_snapshots"), 0.0);
@@ -138,16 +143,16 @@ int run_scene(const RunArgs& a) {
   try {
     for (std::size_t k = 1; k < times.size(); ++k) {
       const double segment_start = seconds_since(start);
-      cvode.advance_to(times[k], [&](double t, long nst) {
+      solver.advance_to(times[k], [&](double t, long nst) {
         stop_if_asked();
-        diag.on_step(t, cvode.state());
+        diag.on_step(t, solver.state());
         progress.update(t, nst);
       });
-      snapshot(times[k], cvode.state());
-      std::vector<double> y(cvode.state().begin(), cvode.state().end());
+      snapshot(times[k], solver.state());
+      std::vector<double> y(solver.state().begin(), solver.state().end());
       if (reinit) {  // the particle laws' eta and v_g from this snapshot's gas on
         sim.refresh_local_gas(y);
-        cvode.reinit(times[k], y);
+        solver.reinit(times[k], y);
       }
       last = record(times[k], std::move(y), index0 + static_cast<long>(k));
       last_rows = row_counts(out.row_digests());
@@ -176,7 +181,7 @@ int run_scene(const RunArgs& a) {
     std::printf(
         "stopped by %s at t = %.4g yr; the last snapshot (snapshot %ld, t = %.4g yr) "
         "is checkpointed in %s\nrestart with: %s\n",
-        stop.reason.c_str(), cvode.time() / units::kYr, last.snapshot_index,
+        stop.reason.c_str(), solver.time() / units::kYr, last.snapshot_index,
         last.t / units::kYr, chk_path.c_str(), restart_command(a, chk_path).c_str());
     if (!a.scene.empty()) {  // the checkpoint holds the scene, --set options included
       RunArgs alone;
@@ -186,7 +191,7 @@ int run_scene(const RunArgs& a) {
     }
   } catch (const SolverError&) {
     progress.done();
-    out.write_solver(cvode.stats(), wall0 + seconds_since(start), "failed");
+    out.write_solver(solver.stats(), wall0 + seconds_since(start), "failed");
     try {
       checkpoint_last();
       std::fprintf(stderr,
@@ -201,22 +206,24 @@ int run_scene(const RunArgs& a) {
   // budget
   if (code == 0) {
     progress.done();
-    std::fputs(diag.finish(cvode.time(), cvode.state()).c_str(), stdout);
+    std::fputs(diag.finish(solver.time(), solver.state()).c_str(), stdout);
     checkpoint_last();
   }
   const double wall = wall0 + seconds_since(start);
-  const SolverStats s = cvode.stats();
+  const SolverStats s = solver.stats();
   out.write_solver(s, wall, status);
   out.close();
   std::printf("%s at t = %.4g yr: %zu snapshots in %s\n",
-              code == 0 ? "completed" : "stopped", cvode.time() / units::kYr,
+              code == 0 ? "completed" : "stopped", solver.time() / units::kYr,
               out.n_snapshots(), out.path().c_str());
   std::printf(
       "solver: %ld steps, %ld RHS, %ld Jacobian evaluations, %ld error-test and %ld "
       "nonlinear convergence failures, %ld reinitialisations, %.3f s wall\n",
       s.nst, s.nfe, s.nje, s.netf, s.nncf, s.nreinit, wall);
-  if (cfg.str("solver.linear") == "gmres") {  // this process's, not the checkpoint's
-    const KrylovStats k = cvode.krylov_stats();
+  // GMRES's counters: this process's, not the checkpoint's
+  const auto* cvode = dynamic_cast<const CvodeIntegrator*>(integrator.get());
+  if (cvode && cfg.str("solver.linear") == "gmres") {
+    const KrylovStats k = cvode->krylov_stats();
     const long nni = s.nni - (restarted ? start_point.stats.nni : 0);
     std::printf(
         "GMRES: %ld linear iterations (%.2f per Newton iteration), %ld "
@@ -228,7 +235,7 @@ int run_scene(const RunArgs& a) {
     std::printf("this process: %ld steps, %ld RHS from t = %.6g yr, %.3f s wall\n",
                 s.nst - start_point.stats.nst, s.nfe - start_point.stats.nfe,
                 times.front() / units::kYr, seconds_since(start));
-  print_budget(sim, cvode.state());
+  print_budget(sim, solver.state());
   return code;
 }
 

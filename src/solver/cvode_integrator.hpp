@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "src/solver/disk_model.hpp"
+#include "src/solver/integrator.hpp"
 #include "src/solver/solver_stats.hpp"
 
 namespace panoptic {
@@ -45,13 +46,6 @@ struct CvodeCallbackData {
   long n_jacobian = 0;
 };
 
-//! The solver of CVODE's Newton systems (solver.linear).
-enum class LinearSolverKind {
-  klu,    //!< KLU, sparse LU of the whole matrix
-  block,  //!< BlockBandedLU: dense LU of the cells' blocks, banded elimination
-  gmres   //!< SPGMR, products with the assembled J, right-preconditioned by cell blocks
-};
-
 //! The counters of the Krylov iteration (solver.linear = "gmres"; zero otherwise) since
 //! the integrator's construction: not in SolverStats, so not carried by checkpoints.
 struct KrylovStats {
@@ -60,26 +54,13 @@ struct KrylovStats {
   long nlcf = 0;  //!< linear convergence failures
 };
 
-struct IntegratorOptions {
-  double rtol = 1e-6;
-  std::vector<double> atol;         //!< per component
-  std::vector<double> constraints;  //!< per component: 1 = y >= 0, 0 = none
-  long max_steps = 2000000;         //!< total step budget of the run
-  double max_dt = 0.0;              //!< largest step [s], 0 = unlimited
-  double newton_coef = 0.03;        //!< CVodeSetNonlinConvCoef (solver.newton_coef)
-  //! CVodeSetJacEvalFrequency and CVodeSetLSetupFrequency (solver.steps_per_jacobian);
-  //! 0: CVODE's own (51 and 20)
-  long steps_per_jacobian = 0;
-  LinearSolverKind linear = LinearSolverKind::klu;
-};
-
 class BlockBandedLU;
 
 //! CVODE's weighted RMS norm sqrt(sum_i (x_i w_i)^2 / n), summed in four independent
 //! partial sums (the integrator installs it as the state vector's norm).
 double weighted_rms_norm(std::span<const double> x, std::span<const double> w);
 
-class CvodeIntegrator {
+class CvodeIntegrator final : public Integrator {
  public:
   CvodeIntegrator(DiskModel& model, double t0, std::span<const double> y0,
                   IntegratorOptions options);
@@ -91,14 +72,15 @@ class CvodeIntegrator {
   //! every internal step. Throws SolverError with the flag name, the time, CVODE's
   //! message, the model's message and the components with the largest weighted local
   //! error, each with the physical state of its cell (DiskModel::describe).
-  void advance_to(double t_out, const std::function<void(double, long)>& on_step = {});
+  void advance_to(double t_out,
+                  const std::function<void(double, long)>& on_step = {}) override;
   //! Restarts the integrator (order 1, fresh history) from (t, y), exactly as a new
   //! integrator built at (t, y): this is what makes a run restarted from a checkpoint
   //! bit-for-bit identical to one that reinitialises at the same time.
-  void reinit(double t, std::span<const double> y);
+  void reinit(double t, std::span<const double> y) override;
   //! Adds the statistics of the part of the run before a restart, so that stats() and
   //! the step budget solver.max_steps cover the whole run.
-  void carry_stats(const SolverStats& before);
+  void carry_stats(const SolverStats& before) override;
 
   //! Accumulate the wall time of every callback and of KLU into `times` (null: off).
   //! For benchmarks: the clock reads cost ~50 ns per call.
@@ -122,14 +104,14 @@ class CvodeIntegrator {
   const CellBlockPreconditioner* preconditioner() const { return preconditioner_.get(); }
   KrylovStats krylov_stats() const;
 
-  double time() const { return t_; }
-  std::span<const double> state() const;
+  double time() const override { return t_; }
+  std::span<const double> state() const override;
   //! dy/dt at time() from CVODE's interpolating polynomial of the last step (valid after
   //! a step; for dense output between steps, e.g. benchmarks coupling integrators).
   void derivative(std::span<double> out) const;
   //! Totals of the run: CVODE's counters (reset by every reinit) plus those saved at
   //! each reinit and carried over from a checkpoint.
-  SolverStats stats() const;
+  SolverStats stats() const override;
 
  private:
   [[noreturn]] void fail(int flag, const std::string& what);
