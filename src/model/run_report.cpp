@@ -153,10 +153,14 @@ std::string Simulation::summary() const {
   s << "\nmodules:";
   for (const auto& m : model_->modules()) s << " " << m->name();
   s << "\n" << physics_choices(cfg_);
-  s << "Jacobian: " << model_->pattern().nnz()
-    << " structural non-zeros; Newton systems solved by "
-    << linear_solver_name(linear_solver()) << " (solver.linear"
-    << (cfg_.str("solver.linear") == "auto" ? " = auto" : "") << ")\n";
+  s << "Jacobian: " << model_->pattern().nnz() << " structural non-zeros; ";
+  if (cfg_.str("solver.method") == "implicit_euler")
+    s << "linearly implicit Euler steps of cfl = " << cfg_.real("solver.cfl")
+      << " times DustPy's rule, solved by block (solver.method)\n";
+  else
+    s << "Newton systems solved by " << linear_solver_name(linear_solver())
+      << " (solver.linear" << (cfg_.str("solver.linear") == "auto" ? " = auto" : "")
+      << ")\n";
   s << "initial dust mass: " << dust_mass0_ / units::kMearth << " M_earth";
   // the cells' centre values against the profile's exact mass: second order in the width
   if (std::isfinite(profile_dust_mass_)) {

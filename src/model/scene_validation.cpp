@@ -211,6 +211,17 @@ void validate_scene(const Config& cfg) {
   // that `panoptic check` and a run find it and not an observe after the run.
   for (const std::string sp : {"ice", "sil"}) (void)optical_table_from_config(cfg, sp);
   validate_distribution(cfg);
+  // DustPy's step rule (src/solver/implicit_euler_integrator.hpp) bounds the change of
+  // surface densities only: the single-size model's m and phi (or q_m, q_V) have no
+  // rule of it, and nothing would hold their steps
+  if (cfg.str("solver.method") == "implicit_euler" &&
+      cfg.str("model.kind") != "distribution")
+    cfg.fail("solver.method",
+             "= \"implicit_euler\" needs model.kind = \"distribution\" (its step rule, "
+             "DustPy's, covers surface densities only, not the single-size model's "
+             "particle mass and filling factor), and model.kind is \"" +
+                 cfg.str("model.kind") +
+                 "\"; set solver.method = \"bdf\" or model.kind = \"distribution\"");
   if (cfg.str("dust.init") == "gaussian_ring") {
     const double r0 = cfg.real("dust.ring_r_au");
     if (r0 <= r_in || r0 >= r_out)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "disk/disk_local_gas.hpp"
 #include "disk/gas_disk.hpp"
@@ -195,7 +196,32 @@ IntegratorOptions Simulation::integrator_options() const {
     o.atol[i] = atol * L.info_of(i).abs_scale * (L.info_of(i).error_test ? 1.0 : 1e30);
     o.constraints[i] = L.info_of(i).nonnegative ? 1.0 : 0.0;
   }
+  if (cfg_.str("solver.method") == "implicit_euler") {
+    o.method = IntegrationMethod::implicit_euler;
+    o.cfl = cfg_.real("solver.cfl");
+    o.step_floor = implicit_euler_step_floors();
+  }
   return o;
+}
+
+std::vector<double> Simulation::implicit_euler_step_floors() const {
+  // DustPy's step rule (src/solver/implicit_euler_integrator.hpp) on the densities it
+  // has: each bin's sigma_k above its floor 0.1 m_k / A_i (dustpy/std/dust.py
+  // SigmaFloor, times the 0.1 of dustpy/simulation.py) and Sigma_g above 1e-100
+  // (dustpy/simulation.py); the rest (psi_k, Sigma_pl, the booked masses) out of it.
+  if (!distribution_)
+    throw std::logic_error("implicit_euler step floors without a size distribution");
+  constexpr double kGasFloor = 1e-100;
+  const StateLayout& L = *layout_;
+  std::vector<double> floor(static_cast<std::size_t>(L.size()),
+                            std::numeric_limits<double>::infinity());
+  const auto& m = distribution_->mass_grid().m;
+  for (int i = 0; i < grid_.n_cells(); ++i) {
+    for (int k = 0; k < distribution_->n_bins(); ++k)
+      floor[L.index(i, distribution_->bin_slot(k))] = 0.1 * m[k] / grid_.area(i);
+    if (gas_.evolves()) floor[L.index(i, gas_.slot)] = kGasFloor;
+  }
+  return floor;
 }
 
 std::vector<double> Simulation::output_times() const {

@@ -85,6 +85,9 @@ class Simulation {
   //! as the run never stopped. No-op for static gas or without growth.
   void refresh_local_gas(std::span<const double> y);
   IntegratorOptions integrator_options() const;
+  //! solver.method = "implicit_euler": the floor of every component in its step rule
+  //! (IntegratorOptions::step_floor; +inf: out of the rule). Distribution only.
+  std::vector<double> implicit_euler_step_floors() const;
   //! Snapshot times [s], t = 0 first, t_end last.
   std::vector<double> output_times() const;
 

@@ -27,9 +27,26 @@ std::vector<KeySpec> grid_keys() {
   };
 }
 
-// [solver] CVODE BDF + KLU; reinit_at_snapshots: restart, src/run/README.md "Restart"
+// [solver] CVODE BDF + KLU, or DustPy's implicit Euler step; reinit_at_snapshots:
+// restart, src/run/README.md "Restart"
 std::vector<KeySpec> solver_keys() {
+  const UsedWhen bdf = one_of("solver.method", {"bdf"});
   return {
+      choice(
+          "solver.method", "bdf", {"bdf", "implicit_euler"},
+          "the time integrator: bdf = CVODE's BDF (variable order and step, error "
+          "control by solver.rtol); implicit_euler = DustPy's step as a baseline "
+          "(model.kind = \"distribution\" only): linearly implicit Euler on the "
+          "model's Jacobian, solved by the block solver, the step solver.cfl times the "
+          "least sigma/|dsigma/dt| over the shrinking bins and Sigma_g above DustPy's "
+          "floors, no error control (src/solver/implicit_euler_integrator.hpp, "
+          "tests/bench/results/implicit_euler.md)"),
+      when({one_of("solver.method", {"implicit_euler"})},
+           real("solver.cfl", "0.1", "",
+                "implicit_euler: the step as a fraction of the shortest time in which a "
+                "shrinking bin (or Sigma_g) would empty at its present rate; 0.1 is "
+                "DustPy's (dustpy/simulation.py, t.cfl)",
+                0.0, true, 10.0, false)),
       real("solver.rtol", "1e-6", "", "CVODE relative tolerance", 1e-14, false, 0.1,
            false),
       real("solver.atol_sigma", "1e-8", "",
@@ -40,36 +57,42 @@ std::vector<KeySpec> solver_keys() {
       integer("solver.max_steps", "2000000", "limit on the total number of CVODE steps",
               1, 1e12),
       real("solver.max_dt_yr", "0.0", "yr",
-           "largest CVODE step (0 = unlimited; else >= 1e-6 yr)", 0.0, false),
-      real(
-          "solver.newton_coef", "0.03", "",
-          "CVODE's nonlinear convergence coefficient (CVodeSetNonlinConvCoef): Newton "
-          "stops when its correction is below this fraction of the local error "
-          "tolerance; 0.03 rather than CVODE's 0.1: less Newton error in the local error "
-          "estimate, fewer failed steps (tests/bench/results/performance_log.md)",
-          0.0, true, 1.0, false),
-      integer("solver.steps_per_jacobian", "10",
+           "largest step of either integrator (0 = unlimited; else >= 1e-6 yr)", 0.0,
+           false),
+      when({bdf},
+           real("solver.newton_coef", "0.03", "",
+                "CVODE's nonlinear convergence coefficient (CVodeSetNonlinConvCoef): "
+                "Newton stops when its correction is below this fraction of the local "
+                "error tolerance; 0.03 rather than CVODE's 0.1: less Newton error in the "
+                "local error estimate, fewer failed steps "
+                "(tests/bench/results/performance_log.md)",
+                0.0, true, 1.0, false)),
+      when(
+          {bdf},
+          integer(
+              "solver.steps_per_jacobian", "10",
               "k: a Newton-matrix factorisation at least every k steps and a fresh "
               "Jacobian at the first one k or more steps after the last "
               "(CVodeSetLSetupFrequency, CVodeSetJacEvalFrequency; CVODE's own are 20 "
               "and 51): a Jacobian of at most 2k - 1 steps keeps Newton converging where "
               "a cell crosses one of the model's smooth switches, fewer failed "
               "iterations and steps (tests/bench/README.md, Performance); 0: CVODE's own",
-              0, 1e6),
-      choice(
-          "solver.linear", "auto", {"auto", "klu", "block", "gmres"},
-          "the solver of CVODE's Newton systems: auto = block for a size distribution "
-          "(model.kind = \"distribution\") whose Newton systems it can solve, else klu; "
-          "klu = KLU's sparse LU of the whole matrix, for single-size runs (a few "
-          "variables per cell); block = dense LU of each cell's block and block-banded "
-          "elimination over the cells (src/solver/block_banded_lu.hpp): a size "
-          "distribution in half KLU's CPU time, its mass budget closing to round-off; "
-          "refused (exit with the reason) where a cell's equations read a global "
-          "variable; gmres = CVODE's SPGMR with products from the assembled Jacobian, "
-          "right-preconditioned by the LU of each cell's dense block "
-          "(src/solver/cell_block_preconditioner.hpp): the fastest on size "
-          "distributions, its mass budget closing only to the Krylov tolerance, slow on "
-          "single-size runs (tests/bench/results/krylov_solver.md)"),
+              0, 1e6)),
+      when({bdf},
+           choice("solver.linear", "auto", {"auto", "klu", "block", "gmres"},
+                  "the solver of CVODE's Newton systems: auto = block for a size "
+                  "distribution (model.kind = \"distribution\") whose Newton systems it "
+                  "can solve, else klu; klu = KLU's sparse LU of the whole matrix, for "
+                  "single-size runs (a few variables per cell); block = dense LU of each "
+                  "cell's block and block-banded elimination over the cells "
+                  "(src/solver/block_banded_lu.hpp): a size distribution in half KLU's "
+                  "CPU time, its mass budget closing to round-off; refused (exit with the"
+                  " reason) where a cell's equations read a global variable; gmres = "
+                  "CVODE's SPGMR with products from the assembled Jacobian, "
+                  "right-preconditioned by the LU of each cell's dense block "
+                  "(src/solver/cell_block_preconditioner.hpp): the fastest on size "
+                  "distributions, its mass budget closing only to the Krylov tolerance, "
+                  "slow on single-size runs (tests/bench/results/krylov_solver.md)")),
       flag("solver.reinit_at_snapshots", "true",
            "reinitialise CVODE at every snapshot time, so that a run restarted from a "
            "checkpoint is bit-for-bit identical to one never stopped; with gas.evolve "
