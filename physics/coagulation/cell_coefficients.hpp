@@ -73,6 +73,31 @@ inline FragmentationModel fragmentation_model(const GrowthOptions& o) {
   return f;
 }
 
+//! The step in ln u of the porous Jacobian's forward differences [-].
+inline constexpr double kLnUStep = 1e-6;
+
+//! The bins that the porous Jacobian's forward differences evaluate: each bin's radius
+//! and Stokes number (spec §2) at u e^kLnUStep, i.e. phi e^-kLnUStep.
+struct PerturbedBins {
+  std::vector<double> a;   //!< radius [cm]
+  std::vector<double> st;  //!< Stokes number [-]
+};
+
+//! The PerturbedBins of the bins of masses m [g] and filling factors phi of monomers of
+//! density rho0 [g cm^-3] in the gas `gas`, into `out` (its storage reused).
+inline void perturbed_bins(std::span<const double> m, std::span<const double> phi,
+                           double rho0, const LocalGas& gas, DragLaw drag,
+                           PerturbedBins& out) {
+  const std::size_t n = m.size();
+  out.a.resize(n);
+  out.st.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double phi_k = phi[k] * std::exp(-kLnUStep);
+    out.a[k] = radius(m[k], phi_k, rho0);
+    out.st[k] = stokes_number_of_radius(out.a[k], phi_k, rho0, gas, drag);
+  }
+}
+
 //! What cell_coefficients keeps from call to call for one cell: its buffers, the pair
 //! speeds' per-pair Brownian terms (PairSpeedEvaluator, rebuilt when the gas temperature
 //! changes) and the product rules' mass terms of every pair of the grid.
@@ -82,9 +107,11 @@ struct CoefficientWorkspace {
   BinProperties bins;                //!< per bin, at phi
   std::vector<BinSpeedTerms> terms;  //!< per bin, at St
   std::vector<double> dv;            //!< N x N [cm s^-1]
-  //! Jacobian: the perturbed bin's radius, St and pair speeds (at (i, j): bin i
-  //! perturbed) and the targets' compression slopes, plain and perturbed
-  std::vector<double> a_step, st_step, dv_step, s_c, s_c_step;
+  //! Jacobian: the perturbed bins (when the caller passes none), the pair speeds with
+  //! one bin perturbed (at (i, j): bin i) and the targets' compression slopes, plain
+  //! and perturbed
+  PerturbedBins perturbed;
+  std::vector<double> dv_step, s_c, s_c_step;
   std::vector<PairMasses> masses;  //!< at (i, j), j <= i: pair_masses(m_i, m_j)
   std::vector<double> masses_of;   //!< the grid `masses` was built for [g]
 
@@ -117,14 +144,14 @@ inline void clear_coefficients(CellCoefficients& c) {
 //! needs none), and those of the floors and relaxation rates.
 //! A caller that evaluates a cell repeatedly passes its `workspace` and the cell's
 //! previous coefficients as `c` (moved in): their storage is reused, and nothing is
-//! allocated once the sizes are set.
-inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
-                                          std::span<const double> sigma,
-                                          std::span<const double> psi,
-                                          const LocalGas& gas, const CellModel& model,
-                                          bool derivatives = false,
-                                          CoefficientWorkspace* workspace = nullptr,
-                                          CellCoefficients c = {}) {
+//! allocated once the sizes are set. A caller that has the perturbed_bins of the same
+//! filling factors (for d St / d ln u of its own) passes them as `perturbed`, so that
+//! they are computed once; without them they are computed here.
+inline CellCoefficients cell_coefficients(
+    const Smoluchowski& engine, std::span<const double> sigma,
+    std::span<const double> psi, const LocalGas& gas, const CellModel& model,
+    bool derivatives = false, CoefficientWorkspace* workspace = nullptr,
+    CellCoefficients c = {}, const PerturbedBins* perturbed = nullptr) {
   CoefficientWorkspace local;
   CoefficientWorkspace& ws = workspace != nullptr ? *workspace : local;
   const MassGrid& grid = engine.grid();
@@ -180,22 +207,21 @@ inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
   // for the Jacobian: d ln K_ij / d ln u_i, a forward difference in bin i's filling
   // factor through its radius, St, h_d and every pair speed (the kernel is the part of
   // the coefficients that moves most with the porosity)
-  const double step = 1e-6;
+  const double step = kLnUStep;
   if (derivatives) {
     c.dlnk_dlnu.resize(nn);
     if (losses) c.dp_dlnu.assign(nn, 0.0);
     ws.dv_step.resize(nn);
-    ws.a_step.resize(n);
-    ws.st_step.resize(n);
+    if (perturbed == nullptr) {
+      perturbed_bins(m, phi, sp.rho0, gas, o.drag, ws.perturbed);
+      perturbed = &ws.perturbed;
+    }
   }
   for (int i = 0; derivatives && i < n; ++i) {
-    const double phi_i = phi[i] * std::exp(-step);
-    const double a_i = radius(m[i], phi_i, sp.rho0);
-    const double st_i = stokes_number_of_radius(a_i, phi_i, sp.rho0, gas, o.drag);
+    const double a_i = perturbed->a[i];
+    const double st_i = perturbed->st[i];
     const double h_i = dust_scale_height(st_i, gas);
     const BinSpeedTerms terms_i = ws.speeds.bin_terms(st_i);
-    ws.a_step[i] = a_i;
-    ws.st_step[i] = st_i;
     for (int j = 0; j < n; ++j) {
       const bool self = j == i;
       const double v = ws.speeds.dv(terms_i, self ? terms_i : ws.terms[j], i, j);  // §3
@@ -228,8 +254,8 @@ inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
   ws.s_c_step.resize(n);
   for (int i = 0; i < n; ++i) {
     ws.s_c[i] = compression_slope_of_target(bins.a[i], bins.St[i], gas, o.drag);
-    ws.s_c_step[i] = derivatives ? compression_slope_of_target(ws.a_step[i],
-                                                               ws.st_step[i], gas, o.drag)
+    ws.s_c_step[i] = derivatives ? compression_slope_of_target(
+                                       perturbed->a[i], perturbed->st[i], gas, o.drag)
                                  : ws.s_c[i];
   }
   const double e_threshold = 3.0 * o.b * sp.e_roll;  // spec §4.2
@@ -270,13 +296,10 @@ inline CellCoefficients cell_coefficients(const Smoluchowski& engine,
   for (int k = 0; k < n; ++k) {
     // spec §4.3 floors of the bin's mass and St (physics/compaction.hpp)
     c.ln_phi_floor[k] = ln_compaction_floor(m[k], bins.St[k], gas, sp, o);
-    if (derivatives) {  // the gas floor moves with St, so with u (forward difference)
-      const double phi_k = phi[k] * std::exp(-step);
-      const double st_k = stokes_number_of_radius(radius(m[k], phi_k, sp.rho0), phi_k,
-                                                  sp.rho0, gas, o.drag);
+    if (derivatives)  // the gas floor moves with St, so with u (forward difference)
       c.dlnfloor_dlnu[k] =
-          (ln_compaction_floor(m[k], st_k, gas, sp, o) - c.ln_phi_floor[k]) / step;
-    }
+          (ln_compaction_floor(m[k], perturbed->st[k], gas, sp, o) - c.ln_phi_floor[k]) /
+          step;
     // spec §4.4 with physics/compaction.hpp's constants: t_relax = kRelaxFraction
     // min(t_grow, kRelaxCapOmega/Omega), t_grow from the bin's sticking gain of mass per
     // unit mass, sum_j K_kj n_j m_j / m_k, over the bins that hold mass (a slightly

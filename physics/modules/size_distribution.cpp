@@ -130,18 +130,20 @@ void SizeDistribution::update_porous(std::span<const double> y, bool coefficient
     const std::size_t off = static_cast<std::size_t>(i) * nb;
     std::copy(bins.St.begin(), bins.St.end(),
               st_.begin() + static_cast<std::ptrdiff_t>(off));
-    for (int k = 0; derivatives && k < nb; ++k) {
-      // d St / d ln u by the forward difference of cell_coefficients (1e-6 in ln u)
-      const double step = 1e-6, phi_step = phi_k[k] * std::exp(-step);
-      const double st = physics::stokes_number_of_radius(
-          physics::radius(m[k], phi_step, rho0), phi_step, rho0, gas, opt_.growth.drag);
-      dst_dlnu_[off + k] = (st - bins.St[k]) / step;
+    // d St / d ln u by the forward difference of cell_coefficients, on the perturbed
+    // bins it is then given
+    coag::PerturbedBins& perturbed = perturbed_scratch_;
+    if (derivatives) {
+      coag::perturbed_bins(m, phi_k, rho0, gas, opt_.growth.drag, perturbed);
+      for (int k = 0; k < nb; ++k)
+        dst_dlnu_[off + k] = (perturbed.st[k] - bins.St[k]) / coag::kLnUStep;
     }
     if (!coefficients || !opt_.coagulation) continue;
     const long base = layout_.index(i, slot0_);
-    coef_[i] = coag::cell_coefficients(engine_, y.subspan(base, nb),
-                                       y.subspan(base + nb, nb), gas, cell_model(i),
-                                       derivatives, &workspace_[i], std::move(coef_[i]));
+    coef_[i] =
+        coag::cell_coefficients(engine_, y.subspan(base, nb), y.subspan(base + nb, nb),
+                                gas, cell_model(i), derivatives, &workspace_[i],
+                                std::move(coef_[i]), derivatives ? &perturbed : nullptr);
   }
 }
 

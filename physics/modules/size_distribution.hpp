@@ -226,8 +226,9 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   mutable std::vector<double> scratch_;
   //! porous, per cell: what cell_coefficients reuses from call to call
   mutable std::vector<physics::coagulation::CoefficientWorkspace> workspace_;
-  mutable std::vector<double> phi_scratch_;                   //!< porous, per bin
-  mutable physics::coagulation::BinProperties bins_scratch_;  //!< porous, per bin
+  mutable std::vector<double> phi_scratch_;                        //!< porous, per bin
+  mutable physics::coagulation::BinProperties bins_scratch_;       //!< porous, per bin
+  mutable physics::coagulation::PerturbedBins perturbed_scratch_;  //!< porous Jacobian
 };
 
 }  // namespace panoptic

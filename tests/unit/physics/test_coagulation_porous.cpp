@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <vector>
 
 #include "physics/coagulation/cell_coefficients.hpp"
@@ -72,21 +73,38 @@ TEST(CoagulationPorous, MonomersGrowIntoFluffyAggregates) {
     }
 }
 
+//! A fluffy disk cell: icy monomers on the MMSN gas at 5 au, bins up to 1e3 g (3.5 per
+//! decade), y = (sigma_k, psi_k): sigma_k a power law cut off at 1e-2 g, phi from
+//! e^-0.1 down (psi_k = sigma_k e^(0.5 k + 0.1)).
+struct FluffyCell {
+  LocalGas gas = mmsn_gas(5.0);
+  CellModel model = testing::ice_cell_model();
+  Smoluchowski eng{MassGrid(model.species.m0, 1e3, 3.5)};
+  int n = eng.size();
+  std::vector<double> y = state(eng.grid().m);
+
+  static std::vector<double> state(const std::vector<double>& m) {
+    const std::size_t n = m.size();
+    std::vector<double> y(2 * n);
+    for (std::size_t k = 0; k < n; ++k) {
+      y[k] = 1e-2 * std::pow(m[k] / m[0], 0.1) * std::exp(-m[k] / 1e-2) + 1e-10;
+      y[n + k] = y[k] * std::exp(0.5 * static_cast<double>(k) + 0.1);
+    }
+    return y;
+  }
+};
+
 // The compaction floors' push T_k = -psi_k softplus(ln floor_k + ln u_k) r_k (spec §4.4,
 // §15.3) on a disk cell whose bins sit at their floors: the Jacobian follows ln floor_k
 // through St_k(u_k) and r_k through t_grow = m_k / sum_j K_kj sigma_j (every sigma_j, and
 // every u_j through K_kj). Without those two derivatives the same check fails.
 TEST(CoagulationPorous, JacobianFollowsTheFloorsAndTheirRelaxationRates) {
-  const LocalGas gas = mmsn_gas(5.0);
-  const CellModel model = testing::ice_cell_model();
-  const Smoluchowski eng(MassGrid(model.species.m0, 1e3, 3.5));
-  const int n = eng.size();
-  const auto& m = eng.grid().m;
-  std::vector<double> y(2 * n);
-  for (int k = 0; k < n; ++k) {
-    y[k] = 1e-2 * std::pow(m[k] / m[0], 0.1) * std::exp(-m[k] / 1e-2) + 1e-10;
-    y[n + k] = y[k] * std::exp(0.5 * k + 0.1);  // fluffy: phi from e^-0.1 down
-  }
+  FluffyCell cell;
+  const LocalGas& gas = cell.gas;
+  const CellModel& model = cell.model;
+  const Smoluchowski& eng = cell.eng;
+  const int n = cell.n;
+  std::vector<double>& y = cell.y;
   auto coefficients = [&](const std::vector<double>& yy) {
     return cell_coefficients(eng, std::span<const double>(yy.data(), n),
                              std::span<const double>(yy.data() + n, n), gas, model, true);
@@ -106,6 +124,41 @@ TEST(CoagulationPorous, JacobianFollowsTheFloorsAndTheirRelaxationRates) {
   // measured 1.2e-10 and 3.0e-3 (of the largest entry |J_fd y_j| of the block)
   EXPECT_LT(with, 1e-7);
   EXPECT_GT(without, 1e-4);
+}
+
+// The porous Jacobian's perturbed bins (radius and St at u e^kLnUStep), given by a caller
+// that has them (the distribution module, for its d St / d ln u), are the ones
+// cell_coefficients uses: the same bits as its own, and other bins change the result.
+TEST(CoagulationPorous, CoefficientsUseTheCallersPerturbedBins) {
+  const FluffyCell cell;
+  const CellModel& model = cell.model;
+  const int n = cell.n;
+  const auto& m = cell.eng.grid().m;
+  const std::span<const double> sigma(cell.y.data(), n), psi(cell.y.data() + n, n);
+  std::vector<double> phi(n);
+  for (int k = 0; k < n; ++k)
+    phi[k] = bin_porosity(sigma[k], psi[k], model.empty_scale).phi();
+  const double rho0 = model.species.rho0;
+  const DragLaw drag = model.growth.drag;
+  auto coefficients = [&](const PerturbedBins* perturbed) {
+    return cell_coefficients(cell.eng, sigma, psi, cell.gas, model, true, nullptr, {},
+                             perturbed);
+  };
+  PerturbedBins same, compact;
+  perturbed_bins(m, phi, rho0, cell.gas, drag, same);
+  perturbed_bins(m, std::vector<double>(n, 1.0), rho0, cell.gas, drag, compact);
+  const CellCoefficients own = coefficients(nullptr), given = coefficients(&same),
+                         other = coefficients(&compact);
+  for (const auto member :
+       {&CellCoefficients::kernel, &CellCoefficients::p_frag,
+        &CellCoefficients::dlnk_dlnu, &CellCoefficients::dp_dlnu,
+        &CellCoefficients::ln_u_ratio, &CellCoefficients::dd_dlnu_i,
+        &CellCoefficients::dd_dlnu_j, &CellCoefficients::ln_phi_floor,
+        &CellCoefficients::dlnfloor_dlnu, &CellCoefficients::relax_rate,
+        &CellCoefficients::drelax_dgrowth})
+    EXPECT_TRUE(own.*member == given.*member);
+  EXPECT_FALSE(own.dlnk_dlnu == other.dlnk_dlnu);
+  EXPECT_FALSE(own.dlnfloor_dlnu == other.dlnfloor_dlnu);
 }
 
 }  // namespace
