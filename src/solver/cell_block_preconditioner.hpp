@@ -4,13 +4,15 @@
 //! among themselves: the coagulation of a cell's bins, its porosity moments and Sigma_g)
 //! and, for the global variables (booked masses), their diagonal. Everything between
 //! cells (transport) and between cells and globals is left to the Krylov iteration.
-//! Each block is factorised with partial pivoting (Eigen::PartialPivLU); nothing is
-//! pivoted between cells, and none need be: P's blocks are independent. Storage: one
-//! b x b LU per cell (b variables per cell) and one pivot per global.
-#include <Eigen/Dense>
+//! The cells' part is the block solver's matrix at bandwidth 0: a BlockBandedLU
+//! (src/solver/block_banded_lu.hpp) of the pattern of the cells' diagonal blocks, which
+//! gathers each block and factorises it with partial pivoting (Eigen::PartialPivLU);
+//! nothing is pivoted between cells, and none need be: P's blocks are independent.
+//! Storage: one b x b LU per cell (b variables per cell) and one pivot per global.
 #include <span>
 #include <vector>
 
+#include "src/solver/block_banded_lu.hpp"
 #include "src/solver/sparsity.hpp"
 
 namespace panoptic {
@@ -32,16 +34,18 @@ class CellBlockPreconditioner {
   long stored_doubles() const;
 
  private:
-  int n_ = 0, b_ = 0;
   long n_cell_part_ = 0;
-  //! The pattern positions of the entries inside cell c's diagonal block, and where each
-  //! goes in the block (column-major), in [cell_begin_[c], cell_begin_[c + 1]).
-  std::vector<long> cell_begin_, source_, target_;
+  //! The pattern of the cells' diagonal blocks (each block's diagonal included), over
+  //! the cells' variables only.
+  SparsityPattern block_pattern_;
+  //! Per entry of block_pattern_: its position in the Jacobian's pattern (-1: not there,
+  //! a diagonal entry), and whether it is on the diagonal.
+  std::vector<long> source_;
+  std::vector<char> on_diagonal_;
+  std::vector<double> block_values_;   //!< I - gamma J_cc in block_pattern_'s order
+  BlockBandedLU cells_;                //!< its factors (bandwidth 0)
   std::vector<long> global_diagonal_;  //!< pattern position of each global's diagonal
-  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> lu_;
-  std::vector<double> global_pivot_;  //!< 1 - gamma J_gg of each global
-  Eigen::MatrixXd block_;
-  mutable Eigen::VectorXd scratch_;
+  std::vector<double> global_pivot_;   //!< 1 - gamma J_gg of each global
 };
 
 }  // namespace panoptic
