@@ -24,10 +24,9 @@ BinPlanetesimals::BinState BinPlanetesimals::bin_state(int cell, int k,
 }
 
 template <class T>
-BinPlanetesimals::Bin<T> BinPlanetesimals::bin(int cell, int k, const T& sigma,
-                                               const T& psi, const T& phi,
+BinPlanetesimals::Bin<T> BinPlanetesimals::bin(const T& sigma, const T& psi, const T& st,
                                                const physics::LocalGas& g) const {
-  Bin<T> b{dist_.bin_stokes(cell, k, phi), T(0.0), T(0.0), T(0.0)};
+  Bin<T> b{st, T(0.0), T(0.0), T(0.0)};
   if (opt_.coagulation) {  // spec §7.1, §15.4
     b.coag = physics::conversion_above_st_pl(sigma, b.st, g.omega_k, opt_.tau_pl_omega,
                                              opt_.st_pl, opt_.width_dex);
@@ -70,17 +69,23 @@ std::pair<double, double> BinPlanetesimals::trigger(double rho_mid,
 void BinPlanetesimals::cell_rates(int cell, std::span<const double> y,
                                   CellRates& out) const {
   const int nb = dist_.n_bins();
+  cell_rates(cell, y,
+             dist_.bin_stokes_numbers(y).subspan(static_cast<std::size_t>(cell) * nb, nb),
+             out);
+}
+
+void BinPlanetesimals::cell_rates(int cell, std::span<const double> y,
+                                  std::span<const double> st, CellRates& out) const {
+  const int nb = dist_.n_bins();
   const physics::LocalGas& g = dist_.bin_gas(cell);
   for (auto* v : {&out.coag, &out.si, &out.coag_psi, &out.si_psi}) v->assign(nb, 0.0);
-  // each bin's state and St, read once: the SI rates below need the trigger of all bins
+  // each bin's state, read once: the SI rates below need the trigger of all bins
   std::vector<BinState> state(nb);
-  std::vector<double> st(nb);
   double rho_mid = 0.0;
   for (int k = 0; k < nb; ++k) {
     state[k] = bin_state(cell, k, y);
     const BinState& v = state[k];
-    const Bin<double> b = bin(cell, k, v.sigma, v.psi, v.phi, g);
-    st[k] = b.st;
+    const Bin<double> b = bin(v.sigma, v.psi, st[k], g);
     out.coag[k] = b.coag;
     out.coag_psi[k] = b.coag_psi;
     rho_mid += b.rho_mid;
@@ -123,8 +128,10 @@ void BinPlanetesimals::declare_pattern(PatternBuilder& p) const {
 void BinPlanetesimals::add_rhs(double, std::span<const double> y,
                                std::span<double> ydot) const {
   CellRates r;
+  const std::span<const double> st = dist_.bin_stokes_numbers(y);
+  const auto nb = static_cast<std::size_t>(dist_.n_bins());
   for (int i = 0; i < layout_.n_cells(); ++i) {
-    cell_rates(i, y, r);
+    cell_rates(i, y, st.subspan(static_cast<std::size_t>(i) * nb, nb), r);
     double booked_coag = 0.0, booked_si = 0.0;
     for (int k = 0; k < dist_.n_bins(); ++k) {
       ydot[layout_.index(i, dist_.bin_slot(k))] -= r.coag[k] + r.si[k];
@@ -173,7 +180,7 @@ void BinPlanetesimals::add_jacobian(double, std::span<const double> y,
       // phi follows the state by SizeDistribution::porosity (its derivatives in add)
       ADCell phi(v.phi);
       if (porous) phi.derivatives()[2] = v.phi;
-      bins[k] = bin(i, k, sig[k], psi[k], phi, g);
+      bins[k] = bin(sig[k], psi[k], dist_.bin_stokes(i, k, phi), g);
       rho_mid += bins[k].rho_mid.value();
     }
     const auto [on, don_drho] =

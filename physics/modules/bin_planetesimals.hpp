@@ -29,14 +29,14 @@
 //!
 //! Sinks: sigma_k loses its rate, and psi_k (porous) the same fraction, by the same
 //! laws, linear in their surface density, applied to psi_k: phi_k is kept (spec §6.2).
-//! St and the gas are the SizeDistribution's (the gas of its last refresh); porous St
-//! from the state here (SizeDistribution::bin_stokes), not the St the SizeDistribution
-//! stores: this module is evaluated before it (evaluation rank 2 < 3, the order in which
-//! the right-hand sides are summed), so that St is of the previous evaluation's state.
+//! St and the gas are the SizeDistribution's (the gas of its last refresh): the St of
+//! the state asked, SizeDistribution::bin_stokes_numbers, computed once per state by
+//! whichever of the two is evaluated first at it (this module, rank 2 < 3).
 //! Jacobian: exact, each bin's laws by AD in its sigma_k, psi_k and ln phi_k (St through
-//! phi), the trigger's dependence on every bin of the cell chained through d trigger /
-//! d rho_mid: a dense block per cell when SI is on (that of the coagulation engine), each
-//! bin's own sigma_k, psi_k otherwise, and the rows of sigma_pl.
+//! phi by the same law, SizeDistribution::bin_stokes), the trigger's dependence on every
+//! bin of the cell chained through d trigger / d rho_mid: a dense block per cell when SI
+//! is on (that of the coagulation engine), each bin's own sigma_k, psi_k otherwise, and
+//! the rows of sigma_pl.
 #include <span>
 #include <utility>
 #include <vector>
@@ -79,7 +79,10 @@ class BinPlanetesimals : public PhysicsModule, public PlanetesimalChannels {
   void cell_rates(int cell, std::span<const double> y, CellRates& out) const;
 
  private:
-  //! The laws of bin k of `cell` at its (sigma, psi) and filling factor phi (T: double,
+  //! cell_rates with the St of the cell's bins, `st` (N values).
+  void cell_rates(int cell, std::span<const double> y, std::span<const double> st,
+                  CellRates& out) const;
+  //! The laws of bin k of `cell` at its (sigma, psi) and Stokes number st (T: double,
   //! or AD seeded in sigma, psi and ln phi).
   template <class T>
   struct Bin {
@@ -88,8 +91,7 @@ class BinPlanetesimals : public PhysicsModule, public PlanetesimalChannels {
     T rho_mid;         //!< SI: W_si(St_k) sigma_k / (sqrt(2 pi) h_d,k) [g cm^-3]
   };
   template <class T>
-  Bin<T> bin(int cell, int k, const T& sigma, const T& psi, const T& phi,
-             const physics::LocalGas& g) const;
+  Bin<T> bin(const T& sigma, const T& psi, const T& st, const physics::LocalGas& g) const;
   //! The SI rate of a bin of surface density `sigma` (sigma_k or psi_k) and St_k with
   //! trigger `trigger` (d16 or s18).
   template <class T>

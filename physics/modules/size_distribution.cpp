@@ -96,6 +96,7 @@ void SizeDistribution::build_cell(int cell, const physics::LocalGas& gas) const 
 
 void SizeDistribution::refresh(std::span<const double> y) const {
   if (!gas_.evolves()) return;
+  st_state_.clear();  // build_cell() sets the compact St of the new gas
   for (int i = 0; i < grid_.n_cells(); ++i) {
     gas_now_[i] = cell_gas_.at(i, &y[layout_.index(i, 0)]);
     build_cell(i, gas_now_[i]);
@@ -113,38 +114,51 @@ coag::BinPorosity SizeDistribution::porosity(int cell, int k,
                             y[layout_.index(cell, psi_slot(k))], empty_scale_);
 }
 
+void SizeDistribution::update_stokes(int cell, std::span<const double> y,
+                                     bool derivatives) const {
+  const int nb = n_bins_;
+  std::vector<double>& phi_k = phi_scratch_;
+  phi_k.resize(nb);
+  const coag::BinProperties& bins = bins_scratch_;
+  const physics::LocalGas& gas = gas_now_[cell];
+  const double rho0 = species_[cell].rho0;
+  for (int k = 0; k < nb; ++k) phi_k[k] = phi(cell, k, y);
+  coag::bin_properties(engine_.grid(), phi_k, rho0, gas, opt_.growth.drag, bins_scratch_);
+  const std::size_t off = static_cast<std::size_t>(cell) * nb;
+  std::copy(bins.St.begin(), bins.St.end(),
+            st_.begin() + static_cast<std::ptrdiff_t>(off));
+  if (!derivatives) return;
+  // d St / d ln u by the forward difference of cell_coefficients, on the perturbed bins
+  // it is then given
+  coag::perturbed_bins(engine_.grid().m, phi_k, rho0, gas, opt_.growth.drag,
+                       perturbed_scratch_);
+  for (int k = 0; k < nb; ++k)
+    dst_dlnu_[off + k] = (perturbed_scratch_.st[k] - bins.St[k]) / coag::kLnUStep;
+}
+
 void SizeDistribution::update_porous(std::span<const double> y, bool coefficients,
                                      bool derivatives) const {
   const int nb = n_bins_;
-  const auto& m = engine_.grid().m;
-  std::vector<double>& phi_k = phi_scratch_;
-  phi_k.resize(nb);
   workspace_.resize(grid_.n_cells());
-  const coag::BinProperties& bins = bins_scratch_;
+  // the St of this state may have been computed already (bin_stokes_numbers); the
+  // Jacobian's d St / d ln u are computed with them
+  const bool stokes = derivatives || !std::ranges::equal(y, st_state_);
   for (int i = 0; i < grid_.n_cells(); ++i) {
-    const physics::LocalGas& gas = gas_now_[i];
-    const double rho0 = species_[i].rho0;
-    for (int k = 0; k < nb; ++k) phi_k[k] = phi(i, k, y);
-    coag::bin_properties(engine_.grid(), phi_k, rho0, gas, opt_.growth.drag,
-                         bins_scratch_);
-    const std::size_t off = static_cast<std::size_t>(i) * nb;
-    std::copy(bins.St.begin(), bins.St.end(),
-              st_.begin() + static_cast<std::ptrdiff_t>(off));
-    // d St / d ln u by the forward difference of cell_coefficients, on the perturbed
-    // bins it is then given
-    coag::PerturbedBins& perturbed = perturbed_scratch_;
-    if (derivatives) {
-      coag::perturbed_bins(m, phi_k, rho0, gas, opt_.growth.drag, perturbed);
-      for (int k = 0; k < nb; ++k)
-        dst_dlnu_[off + k] = (perturbed.st[k] - bins.St[k]) / coag::kLnUStep;
-    }
+    if (stokes) update_stokes(i, y, derivatives);
     if (!coefficients || !opt_.coagulation) continue;
     const long base = layout_.index(i, slot0_);
-    coef_[i] =
-        coag::cell_coefficients(engine_, y.subspan(base, nb), y.subspan(base + nb, nb),
-                                gas, cell_model(i), derivatives, &workspace_[i],
-                                std::move(coef_[i]), derivatives ? &perturbed : nullptr);
+    coef_[i] = coag::cell_coefficients(
+        engine_, y.subspan(base, nb), y.subspan(base + nb, nb), gas_now_[i],
+        cell_model(i), derivatives, &workspace_[i], std::move(coef_[i]),
+        derivatives ? &perturbed_scratch_ : nullptr);
   }
+  if (stokes) st_state_.assign(y.begin(), y.end());
+}
+
+std::span<const double> SizeDistribution::bin_stokes_numbers(
+    std::span<const double> y) const {
+  if (porous_ && !std::ranges::equal(y, st_state_)) update_porous(y, false, false);
+  return st_;
 }
 
 coag::CellCoefficients SizeDistribution::coefficients(int cell,
@@ -200,10 +214,10 @@ int SizeDistribution::dominant_bin(int cell, std::span<const double> y) const {
 }
 
 std::vector<double> SizeDistribution::dominant_st(std::span<const double> y) const {
-  if (porous_) update_porous(y, false, false);
+  const std::span<const double> st_bins = bin_stokes_numbers(y);
   std::vector<double> st(grid_.n_cells());
   for (int i = 0; i < grid_.n_cells(); ++i)
-    st[i] = st_[static_cast<std::size_t>(i) * n_bins_ + dominant_bin(i, y)];
+    st[i] = st_bins[static_cast<std::size_t>(i) * n_bins_ + dominant_bin(i, y)];
   return st;
 }
 
@@ -512,8 +526,8 @@ std::vector<OutputField> SizeDistribution::output_fields() const {
        "Stokes number per mass bin, St(r, m), as the transport and coagulation use it: "
        "cell by cell, the bins of /grid/m_bins in each (spec §2, §15.1)",
        [this](std::span<const double> y) {
-         if (porous_) update_porous(y, false, false);
-         return st_;
+         const std::span<const double> st = bin_stokes_numbers(y);
+         return std::vector<double>(st.begin(), st.end());
        }},
   };
   if (!porous_) return fields;

@@ -110,9 +110,15 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
                                                       std::span<const double> y) const;
   //! The gas of `cell` that the bins' St are taken with: that of the last refresh().
   const physics::LocalGas& bin_gas(int cell) const { return gas_now_[cell]; }
-  //! St of bin k of `cell` with filling factor phi, as the transport and the
-  //! coagulation take it (spec §15.1): compact, the cached St (phi = 1); porous, the drag
-  //! law at the bin's radius (T: double, or AutoDiff for the derivatives by phi).
+  //! St of every bin of every cell at state y, [cell * N + k], as the transport and the
+  //! coagulation take them (spec §15.1): compact, of the gas of the last refresh();
+  //! porous, by the drag law at each bin's radius and phi at y (bin_properties).
+  //! Computed once per state: after the size distribution's own right-hand side at y,
+  //! or a reader's call at y (BinPlanetesimals, evaluated before it), they are read, not
+  //! computed again.
+  std::span<const double> bin_stokes_numbers(std::span<const double> y) const;
+  //! St of bin k of `cell` with filling factor phi by the law of bin_stokes_numbers
+  //! (compact, the cached St, phi = 1), for AutoDiff: the derivatives by phi.
   template <class T>
   T bin_stokes(int cell, int k, const T& phi) const {
     if (!porous_) return T(st_[static_cast<std::size_t>(cell) * n_bins_ + k]);
@@ -177,9 +183,13 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   physics::coagulation::CellModel cell_model(int cell) const;
   //! Porous: the coefficients (with their derivatives by ln u for the Jacobian), St and
   //! d St/d ln u of every bin of every cell from state y.
-  //! Without `coefficients` only St (and with `derivatives` d St/d ln u).
+  //! Without `coefficients` only St (and with `derivatives` d St/d ln u). St are not
+  //! computed again for the state of st_state_ (without `derivatives`).
   void update_porous(std::span<const double> y, bool coefficients,
                      bool derivatives) const;
+  //! Porous: St (and with `derivatives` d St/d ln u, and the perturbed bins of
+  //! perturbed_scratch_) of the bins of `cell` at state y.
+  void update_stokes(int cell, std::span<const double> y, bool derivatives) const;
 
   //! A row that the flow through a face feeds: ydot[row] += weight * flow / divisor.
   struct FlowTarget {
@@ -220,6 +230,8 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   // per cell: the coagulation coefficients and the bins' St (refresh())
   mutable std::vector<physics::coagulation::CellCoefficients> coef_;
   mutable std::vector<double> st_;  //!< [cell * N + k]
+  //! porous: the state st_ was computed at (empty: none since the last refresh())
+  mutable std::vector<double> st_state_;
   //! porous, Jacobian: d St / d ln u of every bin [cell * N + k]
   mutable std::vector<double> dst_dlnu_;
   mutable std::vector<physics::LocalGas> gas_now_;  //!< per cell, of the last refresh

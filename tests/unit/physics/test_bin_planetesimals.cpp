@@ -145,20 +145,33 @@ TEST(BinPlanetesimals, OneBinD16IsTheSingleSizeRate) {
   }
 }
 
+// The porous scene of the two tests below, with both channels (St_pl 1e-4, d16 at
+// eps_crit 1e-3).
+Config porous_converting_scene() {
+  return small_scene({"porosity.enabled=true", "planetesimals.coagulation=true",
+                      "planetesimals.St_pl=1e-4", "planetesimals.si=\"d16\"",
+                      "planetesimals.eps_crit=1e-3"});
+}
+
+// y with the filling factors of a spread distribution: u_k = 1 .. 100 over the bins.
+void spread_porosity(const Simulation& sim, std::vector<double>& y) {
+  const auto* d = sim.distribution();
+  const auto& L = sim.model().layout();
+  for (int i = 0; i < sim.grid().n_cells(); ++i)
+    for (int k = 0; k < d->n_bins(); ++k)
+      y[L.index(i, d->psi_slot(k))] =
+          (1.0 + 99.0 * k / d->n_bins()) * y[L.index(i, d->bin_slot(k))];
+}
+
 // A spread distribution: bins with St_k far below St_pl (the switch 0 to round-off) do
 // not convert, bins far above convert at sigma_k / tau_pl; d16 takes no dust from bins
 // far below St_si_min; and psi_k loses the fraction sigma_k loses (spec §6.2).
 TEST(BinPlanetesimals, OnlyBinsAboveTheThresholdsConvertAndPhiIsKept) {
-  Simulation sim(small_scene({"porosity.enabled=true", "planetesimals.coagulation=true",
-                              "planetesimals.St_pl=1e-4", "planetesimals.si=\"d16\"",
-                              "planetesimals.eps_crit=1e-3"}));
+  Simulation sim(porous_converting_scene());
   const auto* d = sim.distribution();
   const auto& L = sim.model().layout();
   auto y = testing::perturbed_state(sim, 3);
-  for (int i = 0; i < sim.grid().n_cells(); ++i)
-    for (int k = 0; k < d->n_bins(); ++k)  // porous: u_k = 1 .. 100
-      y[L.index(i, d->psi_slot(k))] =
-          (1.0 + 99.0 * k / d->n_bins()) * y[L.index(i, d->bin_slot(k))];
+  spread_porosity(sim, y);
   const PlanetesimalOptions o;
   BinPlanetesimals::CellRates r;
   int below = 0, above = 0, si_below = 0;
@@ -196,6 +209,61 @@ TEST(BinPlanetesimals, OnlyBinsAboveTheThresholdsConvertAndPhiIsKept) {
   EXPECT_GT(above, 10);
   EXPECT_GT(si_below, 50);
   EXPECT_LT(worst_fraction, 1e-14);
+}
+
+// The bins' St that the rates read are those of the state asked (spec §15.1; one law,
+// SizeDistribution::bin_stokes_numbers, computed once per state): after a right-hand side
+// at another state y1, the rates at y2 equal those after a right-hand side at y2, every
+// St equals the law at y2's phi_k, and after a refresh() of the gas (evolving) the St of
+// the same state follow the new gas.
+TEST(BinPlanetesimals, RatesReadTheStOfTheStateAsked) {
+  Simulation sim(porous_converting_scene());
+  const auto* d = sim.distribution();
+  const auto& L = sim.model().layout();
+  const int n = sim.grid().n_cells(), nb = d->n_bins();
+  const auto y1 = testing::perturbed_state(sim, 3);
+  auto y2 = y1;
+  spread_porosity(sim, y2);
+  // the St of every bin at y2 by the law, and whether any differs from y1's
+  const auto law_st = [&](const std::vector<double>& y, int i, int k) {
+    return d->bin_stokes(i, k, d->phi(i, k, y));
+  };
+  std::vector<double> ydot(y1.size());
+  sim.model().rhs(0.0, y1, ydot);
+  std::vector<BinPlanetesimals::CellRates> after_y1(n);
+  for (int i = 0; i < n; ++i) bin_module(sim).cell_rates(i, y2, after_y1[i]);
+  const std::vector<double> st_y2 = [&] {
+    const auto st = d->bin_stokes_numbers(y2);
+    return std::vector<double>(st.begin(), st.end());
+  }();
+  sim.model().rhs(0.0, y2, ydot);
+  int moved = 0;
+  for (int i = 0; i < n; ++i) {
+    BinPlanetesimals::CellRates after_y2;
+    bin_module(sim).cell_rates(i, y2, after_y2);
+    EXPECT_EQ(after_y1[i].coag, after_y2.coag) << "cell " << i;
+    EXPECT_EQ(after_y1[i].si, after_y2.si) << "cell " << i;
+    for (int k = 0; k < nb; ++k) {
+      const std::size_t ik = static_cast<std::size_t>(i) * nb + k;
+      EXPECT_EQ(st_y2[ik], law_st(y2, i, k)) << "cell " << i << " bin " << k;
+      moved += law_st(y1, i, k) != st_y2[ik];
+    }
+  }
+  EXPECT_GT(moved, n * nb / 2);
+  // a refresh() with twice the gas (evolving): the same state's St follow it
+  auto y3 = y2;
+  const int sigma_g = L.find_cell_var("sigma_g").value();
+  for (int i = 0; i < n; ++i) y3[L.index(i, sigma_g)] *= 2.0;
+  d->refresh(y3);
+  const auto st_new_gas = d->bin_stokes_numbers(y2);
+  int changed = 0;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < nb; ++k) {
+      const std::size_t ik = static_cast<std::size_t>(i) * nb + k;
+      EXPECT_EQ(st_new_gas[ik], law_st(y2, i, k)) << "cell " << i << " bin " << k;
+      changed += st_new_gas[ik] != st_y2[ik];
+    }
+  EXPECT_GT(changed, n * nb / 2);
 }
 
 // A run that converts by both channels (St_pl, St_si_min and eps_crit lowered so that
