@@ -166,15 +166,9 @@ LinearSolverKind Simulation::linear_solver() const {
 }
 
 const char* linear_solver_name(LinearSolverKind kind) {
-  switch (kind) {
-    case LinearSolverKind::block:
-      return "block";
-    case LinearSolverKind::gmres:
-      return "gmres";
-    case LinearSolverKind::klu:
-      break;
-  }
-  return "klu";
+  return kind == LinearSolverKind::block   ? "block"
+         : kind == LinearSolverKind::gmres ? "gmres"
+                                           : "klu";
 }
 
 IntegratorOptions Simulation::integrator_options() const {
