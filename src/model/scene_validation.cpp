@@ -217,7 +217,7 @@ void validate_scene(const Config& cfg) {
   if (cfg.str("solver.method") == "implicit_euler" &&
       cfg.str("model.kind") != "distribution")
     cfg.fail("solver.method",
-             "= \"implicit_euler\" needs model.kind = \"distribution\" (its step rule, "
+             "needs model.kind = \"distribution\" (its step rule, "
              "DustPy's, covers surface densities only, not the single-size model's "
              "particle mass and filling factor), and model.kind is \"" +
                  cfg.str("model.kind") +
