@@ -37,11 +37,11 @@ CellBlockPreconditioner::CellBlockPreconditioner(const SparsityPattern& pattern,
       cells_(block_pattern_, n_cells, n_cell_vars) {
   const auto col_ptr = block_pattern_.col_ptr();
   const auto rows = block_pattern_.row_index();
+  // every entry is one of pattern's: its cells' blocks and the diagonal it holds whole
   for (long col = 0; col < n_cell_part_; ++col)
-    for (auto p = col_ptr[col]; p < col_ptr[col + 1]; ++p) {
-      source_.push_back(pattern.position(rows[p], col));
-      on_diagonal_.push_back(rows[p] == col);
-    }
+    for (auto p = col_ptr[col]; p < col_ptr[col + 1]; ++p)
+      source_.push_back(static_cast<std::size_t>(pattern.position(rows[p], col)));
+  block_diagonal_ = block_pattern_.diagonal_positions();
   block_values_.assign(source_.size(), 0.0);
   for (long g = n_cell_part_; g < pattern.size(); ++g)
     global_diagonal_.push_back(pattern.position(g, g));  // the pattern holds it
@@ -49,11 +49,9 @@ CellBlockPreconditioner::CellBlockPreconditioner(const SparsityPattern& pattern,
 }
 
 bool CellBlockPreconditioner::setup(std::span<const double> jacobian, double gamma) {
-  for (std::size_t q = 0; q < source_.size(); ++q) {
-    const double minus_gamma_j =
-        source_[q] < 0 ? 0.0 : -gamma * jacobian[static_cast<std::size_t>(source_[q])];
-    block_values_[q] = on_diagonal_[q] ? minus_gamma_j + 1.0 : minus_gamma_j;
-  }
+  for (std::size_t q = 0; q < source_.size(); ++q)
+    block_values_[q] = jacobian[source_[q]];
+  newton_matrix(block_values_, block_diagonal_, gamma, block_values_);
   if (!cells_.factorize(block_values_)) return false;
   for (std::size_t g = 0; g < global_diagonal_.size(); ++g) {
     global_pivot_[g] =

@@ -38,12 +38,12 @@ class CellBlockPreconditioner {
   //! The pattern of the cells' diagonal blocks (each block's diagonal included), over
   //! the cells' variables only.
   SparsityPattern block_pattern_;
-  //! Per entry of block_pattern_: its position in the Jacobian's pattern (-1: not there,
-  //! a diagonal entry), and whether it is on the diagonal.
-  std::vector<long> source_;
-  std::vector<char> on_diagonal_;
-  std::vector<double> block_values_;   //!< I - gamma J_cc in block_pattern_'s order
-  BlockBandedLU cells_;                //!< its factors (bandwidth 0)
+  //! Per entry of block_pattern_: its position in the Jacobian's pattern.
+  std::vector<std::size_t> source_;
+  std::vector<std::size_t> block_diagonal_;  //!< block_pattern_'s diagonal positions
+  std::vector<double>
+      block_values_;     //!< J_cc, then I - gamma J_cc (block_pattern_'s order)
+  BlockBandedLU cells_;  //!< its factors (bandwidth 0)
   std::vector<long> global_diagonal_;  //!< pattern position of each global's diagonal
   std::vector<double> global_pivot_;   //!< 1 - gamma J_gg of each global
 };

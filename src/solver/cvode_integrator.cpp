@@ -104,11 +104,12 @@ extern "C" int nls_rhs_callback(sunrealtype t, N_Vector y, N_Vector ydot, void* 
 
 // The Newton matrix A = I - gamma J (CVODE's linear-system function). J is evaluated
 // when CVODE asks for a fresh one (jok false) and kept in callback data for the steps
-// that reuse it; A's values are then written in one pass over the pattern, whose
-// structure A holds from its creation. CVODE's own version of this (cvLsLinSys) zeroes
-// A with its index arrays, copies J to a saved matrix or back, and adds the identity by
-// a search for each diagonal: three passes more, 5 % of the fiducial run (perf). Same
-// arithmetic (A_ij = c J_ij, A_jj = 1 + c J_jj, c = -gamma), so the same bits.
+// that reuse it; A's values are then written by newton_matrix (sparsity.hpp) over the
+// pattern, whose structure A holds from its creation. CVODE's own version of this
+// (cvLsLinSys) zeroes A with its index arrays, copies J to a saved matrix or back, and
+// adds the identity by a search for each diagonal: three passes more, 5 % of the
+// fiducial run (perf). Same arithmetic (A_ij = c J_ij, A_jj = 1 + c J_jj, c = -gamma),
+// so the same bits.
 // Evaluates J into d->jacobian unless CVODE lets the last one be reused (jok).
 int update_jacobian(CvodeCallbackData* d, sunrealtype t, N_Vector y, sunbooleantype jok,
                     sunbooleantype* jcur) {
@@ -131,10 +132,8 @@ extern "C" int linsys_callback(sunrealtype t, N_Vector y, N_Vector, SUNMatrix A,
   auto* d = static_cast<CvodeCallbackData*>(data);
   const std::vector<double>& jac = d->jacobian;
   if (const int flag = update_jacobian(d, t, y, jok, jcur); flag != 0) return flag;
-  double* a = SUNSparseMatrix_Data(A);
-  const double c = -gamma;
-  for (std::size_t k = 0; k < jac.size(); ++k) a[k] = c * jac[k];
-  for (const std::size_t k : d->diagonal) a[k] = 1.0 + c * jac[k];
+  newton_matrix(jac, d->diagonal, gamma,
+                std::span<double>(SUNSparseMatrix_Data(A), jac.size()));
   return 0;
 }
 
@@ -300,15 +299,7 @@ void CvodeIntegrator::create_cvode(double t0) {
   // A keeps the pattern's structure; linsys_callback writes only its values
   pattern.copy_structure_to(SUNSparseMatrix_IndexPointers(static_cast<SUNMatrix>(A_)),
                             SUNSparseMatrix_IndexValues(static_cast<SUNMatrix>(A_)));
-  callback_data_.diagonal.assign(static_cast<std::size_t>(n), 0);
-  for (sunindextype j = 0; j < n; ++j) {
-    const long k = pattern.position(j, j);
-    if (k < 0)
-      throw std::logic_error(
-          "CvodeIntegrator: the Jacobian pattern lacks the diagonal of column " +
-          std::to_string(j));
-    callback_data_.diagonal[static_cast<std::size_t>(j)] = static_cast<std::size_t>(k);
-  }
+  callback_data_.diagonal = pattern.diagonal_positions();
   check(CVodeSetLinSysFn(cvode_, linsys_callback), "CVodeSetLinSysFn");
   set_step_controls();
 }

@@ -46,12 +46,7 @@ ImplicitEulerIntegrator::ImplicitEulerIntegrator(DiskModel& model, double t0,
   const SparsityPattern& pattern = model.pattern();
   jacobian_.resize(static_cast<std::size_t>(pattern.nnz()));
   matrix_.resize(jacobian_.size());
-  diagonal_.resize(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    const long k = pattern.position(static_cast<long>(j), static_cast<long>(j));
-    if (k < 0) throw std::logic_error("ImplicitEulerIntegrator: no diagonal in J");
-    diagonal_[j] = static_cast<std::size_t>(k);
-  }
+  diagonal_ = pattern.diagonal_positions();
 }
 
 double ImplicitEulerIntegrator::step_size(std::span<const double> y,
@@ -111,9 +106,7 @@ void ImplicitEulerIntegrator::step(double dt, double t_out) {
           std::to_string(halvings) + " halvings of the step (dt = " + std::to_string(dt) +
           " s)");
     // M = I - dt J on J's pattern (BlockBandedLU's input), then M Delta = dt f
-    const double c = -dt;
-    for (std::size_t k = 0; k < jacobian_.size(); ++k) matrix_[k] = c * jacobian_[k];
-    for (const std::size_t k : diagonal_) matrix_[k] = 1.0 + c * jacobian_[k];
+    newton_matrix(jacobian_, diagonal_, dt, matrix_);
     ++stats_.nsetups;
     bool solved = lu_.factorize(matrix_);
     if (solved) {

@@ -45,6 +45,29 @@ void SparsityPattern::multiply(std::span<const double> values, std::span<const d
   }
 }
 
+std::vector<std::size_t> SparsityPattern::diagonal_positions() const {
+  std::vector<std::size_t> diagonal(static_cast<std::size_t>(n_));
+  for (long j = 0; j < n_; ++j) {
+    const long k = position(j, j);
+    if (k < 0)
+      throw std::logic_error("SparsityPattern: the diagonal entry (" + std::to_string(j) +
+                             ", " + std::to_string(j) +
+                             ") is missing; the Newton matrix I - c J needs every one");
+    diagonal[static_cast<std::size_t>(j)] = static_cast<std::size_t>(k);
+  }
+  return diagonal;
+}
+
+void newton_matrix(std::span<const double> jacobian,
+                   std::span<const std::size_t> diagonal, double c,
+                   std::span<double> out) {
+  const double minus_c = -c;
+  for (std::size_t k = 0; k < jacobian.size(); ++k) out[k] = minus_c * jacobian[k];
+  // 1 + (-c J_jj) from the product just rounded into out: the same bits as from J, and
+  // `out` may alias `jacobian`
+  for (const std::size_t k : diagonal) out[k] = 1.0 + out[k];
+}
+
 PatternMiss::PatternMiss(long r, long c)
     : std::logic_error("Jacobian entry (" + std::to_string(r) + ", " + std::to_string(c) +
                        ") is outside the declared pattern"),

@@ -42,11 +42,24 @@ class SparsityPattern {
   //! y = A x for the matrix A whose values, in the pattern's order, are `values`.
   void multiply(std::span<const double> values, std::span<const double> x,
                 std::span<double> y) const;
+  //! Where each column's diagonal entry sits in the value array, column by column (the
+  //! identity of newton_matrix). Throws std::logic_error naming the first column whose
+  //! diagonal is missing (the constructor inserts the whole diagonal: a miss is a
+  //! programming error).
+  std::vector<std::size_t> diagonal_positions() const;
 
  private:
   long n_ = 0;
   std::vector<sunindextype> col_ptr_, row_index_;
 };
+
+//! The Newton matrix M = I - c J of an implicit step (c = gamma = h beta_0 of CVODE's
+//! BDF, dt of implicit Euler) from J's values in a pattern's order and the pattern's
+//! diagonal_positions(): M_ij = (-c) J_ij, then M_jj = 1 + (-c) J_jj. `out` may be
+//! `jacobian` itself.
+void newton_matrix(std::span<const double> jacobian,
+                   std::span<const std::size_t> diagonal, double c,
+                   std::span<double> out);
 
 //! The value array of a Jacobian in the pattern: modules add their dF/dy into it.
 //! A Jacobian entry written outside the declared pattern (a programming error of the
