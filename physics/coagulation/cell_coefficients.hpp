@@ -286,6 +286,13 @@ inline CellCoefficients cell_coefficients(
       }
     }
   }
+  // fragments no fluffier than the fluffiest aggregate of their mass (porosity.hpp)
+  if (porous && losses) {
+    c.fragment_u_cap.resize(n);
+    for (int k = 0; k < n; ++k) c.fragment_u_cap[k] = fragment_u_ceiling(m[k], sp.m0);
+  } else {
+    c.fragment_u_cap.clear();
+  }
   if (!o.gas_compaction && !o.self_gravity) return c;
   c.ln_phi_floor.resize(n);
   c.relax_rate.resize(n);

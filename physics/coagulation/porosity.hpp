@@ -88,6 +88,21 @@ inline BinPorosity bin_porosity(double sigma, double psi, double e) {
 //! Okuzumi et al.'s (2012) cap on V_void / V_2 [-].
 inline constexpr double kVoidCap = 6.94;
 
+//! The specific volume u of the fluffiest aggregate of mass m [g] made of monomers of
+//! mass m0 [g] [-]: the equal-mass hit-and-stick track of the volume rule below, V_p =
+//! 2.99 V_1 per doubling, u = (m/m0)^(log2(2.99) - 1) = (m/m0)^0.580 (spec §4.3's s_hs;
+//! the BCCA-like growth of Okuzumi, Tanaka & Sakagami 2009, fractal dimension ~1.9), and
+//! 1 at or below m0. Fragments landing in a bin of mass m take their parents' u capped
+//! at this value [C: ours, amending spec §15.3's "fragments take the filling factor of
+//! their parent"]: a piece of N monomers cut from an aggregate is at most as fluffy as
+//! the fluffiest aggregate of N monomers (a fractal's sub-volumes are denser than the
+//! whole, phi(r) ∝ r^(D - 3)), while the uncapped rule put fragments of u ~ 5e4 into the
+//! monomer bin (tests/bench/results/porous_cost.md).
+inline double fragment_u_ceiling(double m, double m0) {
+  static const double slope = std::log2(2.99) - 1.0;
+  return m > m0 ? std::pow(m / m0, slope) : 1.0;
+}
+
 //! The terms of a pair's product rules that depend on its masses only (target m_i,
 //! projectile m_j [g]): a mass grid's pairs keep them from call to call.
 struct PairMasses {

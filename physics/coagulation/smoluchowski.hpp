@@ -33,8 +33,10 @@
 //! Tanaka & Sakagami (2009), whose bins carry mass and the mass-weighted mean volume
 //! measure (spec §15.1). u_k = psi_k / sigma_k = <1/phi>_m of the bin. A sticking product
 //! of specific volume u_p is split into its two bins in proportion to mass, so its
-//! volume m_p u_p is booked exactly; fragments and remnants keep their parents' specific
-//! volume (spec §15.3), so fragmentation conserves psi exactly. The product's u_p comes
+//! volume m_p u_p is booked exactly; remnants keep their parents' specific volume, and
+//! so do fragments (spec §15.3) up to the fluffiest u of the bin they land in
+//! (fragment_u_ceiling, porosity.hpp), so that fragmentation conserves psi where that
+//! ceiling does not bind and only removes volume where it does. The product's u_p comes
 //! per pair as d_ij = ln(u_p / u_i) (physics/coagulation/porosity.hpp), and a relaxation
 //! up to the static compaction floor per bin (spec §4.3-§4.4, §15.3) may be added.
 //!
@@ -78,6 +80,9 @@ struct CellCoefficients {
   std::vector<double> ln_u_ratio;  //!< porous: ln(u_p / u_i) of the product [-]; empty: 0
   std::vector<double> ln_phi_floor;  //!< porous, per bin: ln of the compaction floor
   std::vector<double> relax_rate;    //!< porous, per bin: 1 / t_relax [s^-1]
+  //! porous with fragments, per bin: the largest u a fragment landing in the bin may
+  //! carry (fragment_u_ceiling, porosity.hpp); empty: fragments keep their parents' u
+  std::vector<double> fragment_u_cap;
   //! porous: the empty-bin scale e of bin_porosity() [g cm^-2] (CellModel's)
   double empty_scale = kTinyEmptyScale;
   //! porous, Jacobian only: d ln K_ij / d ln u_i at (i, j) (for i = j the derivative of
@@ -252,7 +257,7 @@ class Smoluchowski {
     }
     if (frag) {
       spread_fragments(frag_mass_, dsigma);
-      if (porous) spread_fragments(frag_psi_, dpsi);
+      if (porous) spread_fragment_volume(c.fragment_u_cap, dpsi);
     }
     if (porous && !c.ln_phi_floor.empty()) {
       for (int k = 0; k < n; ++k) {
@@ -283,6 +288,9 @@ class Smoluchowski {
     // fragments per column and largest-fragment bin, spread at the end
     g_mass_.assign(static_cast<std::size_t>(nv) * n, 0.0);
     if (porous) g_psi_.assign(static_cast<std::size_t>(nv) * n, 0.0);
+    // the fragments' mass and volume rates themselves, for the capped volume's slopes
+    frag_mass_.assign(n, 0.0);
+    frag_psi_.assign(n, 0.0);
     auto at = [&](int row, int col) -> double& {
       return jac[static_cast<std::size_t>(row) * nv + col];
     };
@@ -406,6 +414,7 @@ class Smoluchowski {
           };
           gm(i) += p.frag_mass * dri;
           gm(j) += p.frag_mass * drj;
+          frag_mass_[q] += p.frag_mass * rate;
           if (has_dk)
             u_terms([&](int col, double v) { gm(col) += v; }, p.frag_mass * rate);
           if (porous) {
@@ -417,14 +426,19 @@ class Smoluchowski {
               return g_psi_[static_cast<std::size_t>(col) * n + q];
             };
             vol([&](int col, double v) { g(col) += v; }, ct, m[j]);
+            frag_psi_[q] += ct * u_t + m[j] * u_j;
           }
         }
       }
     }
     if (frag) {
+      const bool capped = porous && !c.fragment_u_cap.empty();
+      if (capped) fragment_volume_slopes(c.fragment_u_cap);
       for (int col = 0; col < nv; ++col) {
         spread_column(&g_mass_[static_cast<std::size_t>(col) * n], 0, col, jac, nv);
-        if (porous)
+        if (capped)
+          spread_capped_column(col, jac, nv);
+        else if (porous)
           spread_column(&g_psi_[static_cast<std::size_t>(col) * n], n, col, jac, nv);
       }
     }
@@ -519,6 +533,62 @@ class Smoluchowski {
       out[k] += weight_[k] * suffix;
     }
   }
+  //! The volume of the fragments landing in bin k: their parents' volume, W_k = w_k
+  //! sum_{q >= k} frag_psi_q / Z_q (the mass's spread), capped at cap_k times their
+  //! mass M_k (spec §15.3 as amended in porosity.hpp's fragment_u_ceiling) by the smooth
+  //! minimum soft_min(W_k, cap_k M_k); where either is not positive (integration noise
+  //! of nearly empty bins), W_k. dpsi_k += that; no cap: W_k.
+  void spread_fragment_volume(const std::vector<double>& cap,
+                              std::span<double> out) const {
+    if (cap.empty()) {
+      spread_fragments(frag_psi_, out);
+      return;
+    }
+    double s_psi = 0.0, s_mass = 0.0;
+    for (int k = n_ - 1; k >= 0; --k) {
+      s_psi += frag_psi_[k] * inv_z_[k];
+      s_mass += frag_mass_[k] * inv_z_[k];
+      out[k] += weight_[k] * capped_volume(s_psi, cap[k] * s_mass).value;
+    }
+  }
+  //! soft_min(w, c) for w, c > 0 with its slopes by w and by c; else w (slopes 1, 0).
+  struct CappedVolume {
+    double value = 0.0, by_volume = 1.0, by_cap = 0.0;
+  };
+  static CappedVolume capped_volume(double w, double c) {
+    if (!(w > 0.0 && c > 0.0)) return {w, 1.0, 0.0};
+    const double v = soft_min(w, c);
+    // soft_min = (w^-p + c^-p)^(-1/p): d/dw = (v / w)^(p + 1)
+    return {v, std::pow(v / w, kSoftMaxPower + 1.0),
+            std::pow(v / c, kSoftMaxPower + 1.0)};
+  }
+  //! Per bin k, d dpsi_k / d(sum of frag_psi) and d dpsi_k / d(sum of frag_mass) of the
+  //! capped fragment volume at the sources of the Jacobian's state.
+  void fragment_volume_slopes(const std::vector<double>& cap) const {
+    slope_psi_.resize(n_);
+    slope_mass_.resize(n_);
+    double s_psi = 0.0, s_mass = 0.0;
+    for (int k = n_ - 1; k >= 0; --k) {
+      s_psi += frag_psi_[k] * inv_z_[k];
+      s_mass += frag_mass_[k] * inv_z_[k];
+      const CappedVolume v = capped_volume(s_psi, cap[k] * s_mass);
+      slope_psi_[k] = weight_[k] * v.by_volume;
+      slope_mass_[k] = weight_[k] * v.by_cap * cap[k];
+    }
+  }
+  //! The capped fragment volume's column `col` into the volume rows: the suffix sums of
+  //! the column's fragment mass and volume derivatives times the slopes.
+  void spread_capped_column(int col, std::span<double> jac, int nv) const {
+    const double* gm = &g_mass_[static_cast<std::size_t>(col) * n_];
+    const double* gp = &g_psi_[static_cast<std::size_t>(col) * n_];
+    double s_psi = 0.0, s_mass = 0.0;
+    for (int k = n_ - 1; k >= 0; --k) {
+      s_psi += gp[k] * inv_z_[k];
+      s_mass += gm[k] * inv_z_[k];
+      jac[static_cast<std::size_t>(n_ + k) * nv + col] +=
+          slope_psi_[k] * s_psi + slope_mass_[k] * s_mass;
+    }
+  }
   void spread_column(const double* src, int row0, int col, std::span<double> jac,
                      int nv) const {
     double suffix = 0.0;
@@ -535,6 +605,7 @@ class Smoluchowski {
   std::vector<Pair> pairs_;
   std::vector<double> weight_, inv_z_;
   mutable std::vector<double> num_, frag_mass_, frag_psi_, g_mass_, g_psi_;
+  mutable std::vector<double> slope_psi_, slope_mass_;
   mutable std::vector<BinPorosity> u_;
 };
 

@@ -90,6 +90,7 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   static double first_bin_mass(const SizeDistributionOptions& options,
                                const std::vector<physics::Species>& species);
   const physics::coagulation::MassGrid& mass_grid() const { return engine_.grid(); }
+  const physics::coagulation::Smoluchowski& engine() const { return engine_; }
   int n_bins() const { return n_bins_; }
   int bin_slot(int k) const { return slot0_ + k; }
   bool porous() const { return porous_; }

@@ -1,7 +1,9 @@
 // Why CVODE's Newton iteration fails on a scene (not a test; written for the porous
 // size-distribution runs, tests/bench/results/porous_newton.md). Integrates the scene
 // as `panoptic run` does (CVODE reinitialised at every snapshot) and prints the solver
-// counters per snapshot interval with the CPU time. With --probe N, at the first N steps
+// counters per snapshot interval with the CPU time, and the wall time spent in CVODE's
+// callbacks at the end. With --limiting 1, the components whose weighted local error
+// was the largest, with the number of steps each. With --probe N, at the first N steps
 // that followed a Newton convergence failure it keeps the state, and afterwards, at each:
 // * the bins whose sigma or psi is <= 0 or whose psi/sigma < 1 (phi > 1);
 // * the implicit-Euler Newton iteration y = y0 + h f(y) from the predictor y0 + h y0'
@@ -270,7 +272,10 @@ int main(int argc, char** argv) {
   const std::vector<double> times = sim.output_times();
   std::vector<double> y = sim.initial_state();
   CvodeIntegrator cvode(sim.model(), times.front(), y, opt);
+  CallbackTimes cb;
+  cvode.set_profile(&cb);
   std::vector<Probe> probes;
+  std::map<std::string, long> limiting_kind;  // steps by variable kind ("psi", "sigma_g")
   long last_nncf = 0, failures_seen = 0;
   SolverStats prev;
   double cpu0 = cpu_seconds(), cpu_prev = cpu0;
@@ -282,7 +287,16 @@ int main(int argc, char** argv) {
     cvode.advance_to(times[k], [&](double t, long) {
       if (count_limiting) {
         const auto info = cvode.step_info(1);
-        if (!info.largest_errors.empty()) ++limiting[info.largest_errors[0].first];
+        if (!info.largest_errors.empty()) {
+          const long i = info.largest_errors[0].first;
+          ++limiting[i];
+          const std::string& name = sim.model().layout().info_of(i).name;
+          const auto digit = name.find_last_not_of("0123456789");
+          ++limiting_kind[name.back() >= '0' && name.back() <= '9' &&
+                                  digit != name.size() - 1
+                              ? name.substr(0, digit)
+                              : name];
+        }
       }
       const long nncf = cvode.stats().nncf;
       if (nncf == last_nncf) return;
@@ -307,10 +321,19 @@ int main(int argc, char** argv) {
       std::vector<std::pair<int, long>> v;
       for (const auto& [i, c] : limiting) v.push_back({c, i});
       std::sort(v.rbegin(), v.rend());
-      for (std::size_t q = 0; q < v.size() && q < 6; ++q)
-        std::printf("    largest error in %d steps: %s = %.3e\n", v[q].first,
-                    sim.model().layout().describe(v[q].second).c_str(),
-                    cvode.state()[v[q].second]);
+      for (std::size_t q = 0; q < v.size() && q < 6; ++q) {
+        const auto& L = sim.model().layout();
+        const long i = v[q].second;
+        std::printf("    largest error in %d steps: %s = %.3e", v[q].first,
+                    L.describe(i).c_str(), cvode.state()[i]);
+        const std::string& name = L.info_of(i).name;
+        if (name.rfind("psi_", 0) == 0)  // a bin's volume measure: with the bin's sigma
+          if (const auto s = L.find_cell_var("sigma_" + name.substr(4));
+              s && L.cell_of(i) >= 0)
+            std::printf(" (%s = %.3e)", L.cell_var(*s).name.c_str(),
+                        cvode.state()[L.index(L.cell_of(i), *s)]);
+        std::printf("\n");
+      }
     }
     std::fflush(stdout);
     prev = s;
@@ -327,6 +350,16 @@ int main(int argc, char** argv) {
       "Newton failures, %ld error-test failures, %.1f s CPU; budget error %.1e\n",
       s.nst, s.nfe, s.nje, s.nni, s.nncf, s.netf, cpu_seconds() - cpu0,
       sim.budget_error(y));
+  if (count_limiting) {
+    std::printf("steps limited by (largest weighted local error):");
+    for (const auto& [kind, n] : limiting_kind) std::printf(" %s %ld", kind.c_str(), n);
+    std::printf("\n");
+  }
+  std::printf(
+      "wall s in CVODE's callbacks (calls): RHS %.2f (%ld), Jacobian %.2f (%ld), "
+      "linear set-up %.2f (%ld), linear solve %.2f (%ld)\n",
+      cb.rhs_s, cb.n_rhs, cb.jac_s, cb.n_jac, cb.lsetup_s, cb.n_lsetup, cb.lsolve_s,
+      cb.n_lsolve);
   for (const Probe& pr : probes) analyse(sim, pr, opt);
   return 0;
 }
