@@ -131,8 +131,10 @@ TEST(SizeDistributionPorous, CoagulationConservesMassAndBooksTheVolume) {
         const double rate =
             (a == b ? 0.5 : 1.0) * c.kernel[ab] * (sa / m[a]) * (sb / m[b]);
         const double p = c.p_frag.empty() ? 0.0 : c.p_frag[ab];
+        // (m_a + m_b) u_a e^d - m_a u_a - m_b u_b without the cancelling terms
+        const double d_ab = c.ln_u_ratio[ab];
         gain += (1.0 - p) * rate *
-                ((m[a] + m[b]) * ua * std::exp(c.ln_u_ratio[ab]) - m[a] * ua - m[b] * ub);
+                (m[a] * ua * std::expm1(d_ab) + m[b] * (ua * std::exp(d_ab) - ub));
       }
     // the engine with fragments that keep their parents' volume books exactly the
     // sticking gain; the fragment ceiling (porosity.hpp) only removes volume
