@@ -116,6 +116,7 @@ Simulation::Simulation(const Config& cfg)
     for (BudgetTerm& term : m->budget_terms()) budget_terms_.push_back(std::move(term));
   layout_->freeze();
   model_ = std::make_unique<DiskModel>(layout_, std::move(modules));
+  linear_solver_ = resolve_linear_solver();
   output_fields_ = make_output_fields();
   model_->set_describer(
       [this](long index, std::span<const double> y) { return describe_state(index, y); });
@@ -149,7 +150,7 @@ void Simulation::refresh_local_gas(std::span<const double> y) {
   if (growth_) growth_->forget();
 }
 
-LinearSolverKind Simulation::linear_solver() const {
+LinearSolverKind Simulation::resolve_linear_solver() const {
   const std::string linear = cfg_.str("solver.linear");
   if (linear == "block") return LinearSolverKind::block;
   if (linear == "gmres") return LinearSolverKind::gmres;
@@ -159,10 +160,11 @@ LinearSolverKind Simulation::linear_solver() const {
   // (tests/bench/results/krylov_solver.md, block_solver.md); gmres is faster still but
   // closes the budget only to the Krylov tolerance, short of issue 35's 1e-10.
   const StateLayout& L = *layout_;
-  const bool block_solves =
-      BlockBandedLU::refusal(model_->pattern(), L.n_cells(), L.n_cell_vars()).empty();
-  return distribution_ != nullptr && block_solves ? LinearSolverKind::block
-                                                  : LinearSolverKind::klu;
+  return distribution_ != nullptr &&
+                 BlockBandedLU::refusal(model_->pattern(), L.n_cells(), L.n_cell_vars())
+                     .empty()
+             ? LinearSolverKind::block
+             : LinearSolverKind::klu;
 }
 
 const char* linear_solver_name(LinearSolverKind kind) {

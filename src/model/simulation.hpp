@@ -76,8 +76,9 @@ class Simulation {
 
   std::vector<double> initial_state() const;
   //! The solver of the Newton systems, solver.linear with "auto" resolved: block for a
-  //! size distribution whose pattern the block solver takes, else KLU.
-  LinearSolverKind linear_solver() const;
+  //! size distribution whose pattern the block solver takes, else KLU. Resolved once, at
+  //! construction; the integrators trust it.
+  LinearSolverKind linear_solver() const { return linear_solver_; }
   //! Where the gas evolves: sets the pressure-gradient parameter eta and the radial gas
   //! velocity that the particle laws see (CellGas::set_pressure_and_flow) from the gas
   //! at state y. Called where CVODE starts or restarts (every snapshot, with
@@ -142,6 +143,7 @@ class Simulation {
   //! right-hand side is not finite (and positive where it must be) in some cell.
   void check_start_is_finite() const;
   std::vector<OutputField> make_output_fields() const;
+  LinearSolverKind resolve_linear_solver() const;
   Config cfg_;
   Grid grid_;
   std::unique_ptr<GasDisk> disk_;
@@ -165,6 +167,7 @@ class Simulation {
   std::unique_ptr<DiskModel> model_;
   std::vector<const PhysicsModule*> modules_in_build_order_;
   std::vector<OutputField> output_fields_;
+  LinearSolverKind linear_solver_ = LinearSolverKind::klu;
   std::vector<double> sigma_d0_;
   double sigma_scale_ = 1.0, dust_mass0_ = 0.0, profile_dust_mass_ = 0.0;
 };

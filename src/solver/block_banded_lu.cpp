@@ -20,6 +20,9 @@ bool usable(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
 
 }  // namespace
 
+BlockStructureRefused::BlockStructureRefused(const std::string& why)
+    : std::invalid_argument("BlockBandedLU: " + why), reason(why) {}
+
 std::string BlockBandedLU::refusal(const SparsityPattern& pattern, int n_blocks,
                                    int block_size) {
   const long n = pattern.size();
@@ -42,7 +45,7 @@ std::string BlockBandedLU::refusal(const SparsityPattern& pattern, int n_blocks,
 BlockBandedLU::BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int block_size)
     : n_(n_blocks), b_(block_size) {
   if (const std::string why = refusal(pattern, n_blocks, block_size); !why.empty())
-    throw std::invalid_argument("BlockBandedLU: " + why);
+    throw BlockStructureRefused(why);
   n_cell_part_ = static_cast<long>(n_) * b_;
   n_g_ = static_cast<int>(pattern.size() - n_cell_part_);
   const auto col_ptr = pattern.col_ptr();

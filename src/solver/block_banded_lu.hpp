@@ -22,12 +22,21 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "src/solver/sparsity.hpp"
 
 namespace panoptic {
+
+//! BlockBandedLU's refusal of a pattern without its structure: what() is
+//! "BlockBandedLU: " + reason, `reason` BlockBandedLU::refusal()'s text (for the callers'
+//! messages, which name the scene key that chose the solver).
+struct BlockStructureRefused : std::invalid_argument {
+  explicit BlockStructureRefused(const std::string& why);
+  std::string reason;
+};
 
 class BlockBandedLU {
  public:
@@ -37,7 +46,7 @@ class BlockBandedLU {
   static std::string refusal(const SparsityPattern& pattern, int n_blocks,
                              int block_size);
 
-  //! Throws std::invalid_argument with refusal() when the pattern lacks the structure.
+  //! Throws BlockStructureRefused with refusal() when the pattern lacks the structure.
   BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int block_size);
 
   int n_blocks() const { return n_; }

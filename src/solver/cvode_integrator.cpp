@@ -277,15 +277,15 @@ void CvodeIntegrator::create_cvode(double t0) {
   if (opt_.linear == LinearSolverKind::block) {
     if (!block_lu_) {
       const StateLayout& layout = model_.layout();
-      const std::string why =
-          BlockBandedLU::refusal(pattern, layout.n_cells(), layout.n_cell_vars());
-      if (!why.empty())
+      try {
+        block_lu_ = std::make_unique<BlockBandedLU>(pattern, layout.n_cells(),
+                                                    layout.n_cell_vars());
+      } catch (const BlockStructureRefused& e) {
         throw SolverError(
             "solver.linear = \"block\" cannot solve this scene's Newton "
             "systems: " +
-            why + "; use solver.linear = \"klu\"");
-      block_lu_ = std::make_unique<BlockBandedLU>(pattern, layout.n_cells(),
-                                                  layout.n_cell_vars());
+            e.reason + "; use solver.linear = \"klu\"");
+      }
     }
     LS_ = make_block_linear_solver(*block_lu_, ctx);
   } else {

@@ -17,14 +17,14 @@ namespace {
 // pattern does not fit it (returned as a prvalue: built in place, never moved).
 BlockBandedLU block_solver_for(const DiskModel& model) {
   const StateLayout& layout = model.layout();
-  const std::string why =
-      BlockBandedLU::refusal(model.pattern(), layout.n_cells(), layout.n_cell_vars());
-  if (!why.empty())
+  try {
+    return BlockBandedLU(model.pattern(), layout.n_cells(), layout.n_cell_vars());
+  } catch (const BlockStructureRefused& e) {
     throw SolverError(
         "solver.method = \"implicit_euler\" needs the block solver, which "
         "cannot solve this scene's linear systems: " +
-        why + "; use solver.method = \"bdf\"");
-  return BlockBandedLU(model.pattern(), layout.n_cells(), layout.n_cell_vars());
+        e.reason + "; use solver.method = \"bdf\"");
+  }
 }
 
 }  // namespace

@@ -164,6 +164,13 @@ TEST(BlockBandedLU, RefusesCellRowsThatReadGlobals) {
   EXPECT_NE(why.find("variable 1 of cell 1 depends on global variable 0"),
             std::string::npos)
       << why;
+  try {
+    BlockBandedLU lu(pattern, 3, 2);
+    ADD_FAILURE() << "expected a refusal";
+  } catch (const BlockStructureRefused& e) {
+    EXPECT_EQ(e.reason, why);
+    EXPECT_EQ(std::string(e.what()), "BlockBandedLU: " + why);
+  }
   EXPECT_THROW(BlockBandedLU(pattern, 3, 2), std::invalid_argument);
   EXPECT_EQ(BlockBandedLU::refusal(pattern, 7, 1), "");  // 7 cells of 1: no global
   EXPECT_NE(BlockBandedLU::refusal(pattern, 4, 2), "");  // 8 > 7 variables
