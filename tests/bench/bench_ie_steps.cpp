@@ -16,13 +16,14 @@
 //                  each pair's rate attributed to the column of its larger partner, with
 //                  the smaller partner's number density held (dust.f90
 //                  jacobian_coagulation_generator), so that J_P sigma = S_coag; built
-//                  from the engine's right-hand side on the state cut above each bin
+//                  from the engine's right-hand side on the state cut above each bin;
+//                  --picard-cells K: in the K innermost cells only (a cheaper proxy)
 // The last two (and --own, for a check: the same steps) take the steps here (the
 // integrator's arithmetic: M = I - dt J, M Delta = dt f); the others run
 // ImplicitEulerIntegrator itself.
 // Usage: build/tests/bench_ie_steps SCENE [--set key=value ...] [--no-gas] [--edge N]
-//        [--floor-reset] [--picard] [--own] [--window-yr T] [--log FILE] [--log-from-yr
-//        T]
+//        [--floor-reset] [--picard] [--picard-cells K] [--own] [--window-yr T] [--log
+//        FILE] [--log-from-yr T]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -49,7 +50,7 @@ struct Args {
   std::string scene, log;
   std::vector<std::string> sets;
   bool no_gas = false, floor_reset = false, picard = false, own = false;
-  int edge = 0;
+  int edge = 0, picard_cells = -1;
   double window_yr = 1e4, log_from_yr = 1e4;
 };
 
@@ -72,6 +73,8 @@ Args parse(int argc, char** argv) {
       a.sets.emplace_back(argv[++i]);
     else if (s == "--edge" && has_value)
       a.edge = std::stoi(argv[++i]);
+    else if (s == "--picard-cells" && has_value)
+      a.picard_cells = std::stoi(argv[++i]);
     else if (s == "--window-yr" && has_value)
       a.window_yr = std::stod(argv[++i]);
     else if (s == "--log" && has_value)
@@ -91,7 +94,9 @@ Args parse(int argc, char** argv) {
 //! difference (1e-13 of the larger term) are dropped.
 class PicardMatrix {
  public:
-  PicardMatrix(const Simulation& sim) : sim_(sim), dist_(*sim.distribution()) {
+  //! J_P in the cells below `n_cells` (all if negative), the derivative elsewhere.
+  PicardMatrix(const Simulation& sim, int n_cells)
+      : sim_(sim), dist_(*sim.distribution()), n_cells_(n_cells) {
     const StateLayout& L = sim.model().layout();
     const int nb = dist_.n_bins();
     pos_.resize(static_cast<std::size_t>(L.n_cells()) * nb * nb);
@@ -110,7 +115,8 @@ class PicardMatrix {
     const int nb = dist_.n_bins();
     std::vector<double> sigma(nb), cut(nb), below(nb), upto(nb), dense(nb * nb);
     before_.resize(static_cast<std::size_t>(nb) * nb);
-    for (int c = 0; c < L.n_cells(); ++c) {
+    const int cells = n_cells_ < 0 ? L.n_cells() : std::min(n_cells_, L.n_cells());
+    for (int c = 0; c < cells; ++c) {
       const auto coef = dist_.coefficients(c, y);
       for (int k = 0; k < nb; ++k) sigma[k] = y[L.index(c, dist_.bin_slot(k))];
       engine.jacobian(coef, sigma, {}, dense);
@@ -156,6 +162,7 @@ class PicardMatrix {
  private:
   const Simulation& sim_;
   const SizeDistribution& dist_;
+  int n_cells_;
   std::vector<long> pos_;
   mutable std::vector<double> before_;  // the block less J_P (the check)
   mutable bool checked_ = false;
@@ -181,7 +188,8 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr,
                  "usage: %s SCENE [--set k=v ...] [--no-gas] [--edge N] [--floor-reset] "
-                 "[--picard] [--window-yr T] [--log FILE] [--log-from-yr T]\n",
+                 "[--picard [--picard-cells K]] [--own] [--window-yr T] [--log FILE] "
+                 "[--log-from-yr T]\n",
                  argv[0]);
     return 2;
   }
@@ -217,7 +225,7 @@ int main(int argc, char** argv) {
   const std::vector<std::size_t> diag = model.pattern().diagonal_positions();
   std::vector<double> f(y.size()), jac(static_cast<std::size_t>(model.pattern().nnz()));
   std::unique_ptr<PicardMatrix> picard;
-  if (a.picard) picard = std::make_unique<PicardMatrix>(sim);
+  if (a.picard) picard = std::make_unique<PicardMatrix>(sim, a.picard_cells);
 
   FILE* log = a.log.empty() ? nullptr : std::fopen(a.log.c_str(), "w");
   if (log) std::fprintf(log, "step,t_yr,dt_yr,cell,variable,value,value_over_floor\n");
