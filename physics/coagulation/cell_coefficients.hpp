@@ -114,6 +114,9 @@ struct CoefficientWorkspace {
   std::vector<double> dv_step, s_c, s_c_step;
   std::vector<PairMasses> masses;  //!< at (i, j), j <= i: pair_masses(m_i, m_j)
   std::vector<double> masses_of;   //!< the grid `masses` was built for [g]
+  //! per bin: fragment_u_ceiling(m_k, m0) of the grid `cap_of` and monomer mass `cap_m0`
+  std::vector<double> fragment_u_cap, cap_of;
+  double cap_m0 = -1.0;  //!< [g]
 
   //! The mass terms of every pair of `m` (kept while the grid stays the same).
   void set_grid(std::span<const double> m) {
@@ -123,6 +126,18 @@ struct CoefficientWorkspace {
     masses.assign(n * n, PairMasses{});
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j <= i; ++j) masses[i * n + j] = pair_masses(m[i], m[j]);
+  }
+
+  //! The fragments' ceiling of every bin of `m` for monomers of mass m0 [g] (kept while
+  //! the grid and m0 stay the same): it depends on neither the gas nor the state.
+  const std::vector<double>& fragment_ceiling(std::span<const double> m, double m0) {
+    if (m0 == cap_m0 && std::ranges::equal(m, cap_of)) return fragment_u_cap;
+    cap_m0 = m0;
+    cap_of.assign(m.begin(), m.end());
+    fragment_u_cap.resize(m.size());
+    for (std::size_t k = 0; k < m.size(); ++k)
+      fragment_u_cap[k] = fragment_u_ceiling(m[k], m0);
+    return fragment_u_cap;
   }
 };
 
@@ -288,8 +303,8 @@ inline CellCoefficients cell_coefficients(
   }
   // fragments no fluffier than the fluffiest aggregate of their mass (porosity.hpp)
   if (porous && losses) {
-    c.fragment_u_cap.resize(n);
-    for (int k = 0; k < n; ++k) c.fragment_u_cap[k] = fragment_u_ceiling(m[k], sp.m0);
+    const std::vector<double>& cap = ws.fragment_ceiling(m, sp.m0);
+    c.fragment_u_cap.assign(cap.begin(), cap.end());
   } else {
     c.fragment_u_cap.clear();
   }

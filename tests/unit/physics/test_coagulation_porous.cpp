@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <span>
@@ -126,6 +127,15 @@ TEST(CoagulationPorous, JacobianFollowsTheFloorsAndTheirRelaxationRates) {
   EXPECT_GT(without, 1e-4);
 }
 
+//! Every vector of CellCoefficients, for comparisons member by member.
+constexpr std::array<std::vector<double> CellCoefficients::*, 12> kCoefficientVectors = {
+    &CellCoefficients::kernel,         &CellCoefficients::p_frag,
+    &CellCoefficients::dlnk_dlnu,      &CellCoefficients::dp_dlnu,
+    &CellCoefficients::ln_u_ratio,     &CellCoefficients::dd_dlnu_i,
+    &CellCoefficients::dd_dlnu_j,      &CellCoefficients::ln_phi_floor,
+    &CellCoefficients::dlnfloor_dlnu,  &CellCoefficients::relax_rate,
+    &CellCoefficients::drelax_dgrowth, &CellCoefficients::fragment_u_cap};
+
 // The porous Jacobian's perturbed bins (radius and St at u e^kLnUStep), given by a caller
 // that has them (the distribution module, for its d St / d ln u), are the ones
 // cell_coefficients uses: the same bits as its own, and other bins change the result.
@@ -149,16 +159,41 @@ TEST(CoagulationPorous, CoefficientsUseTheCallersPerturbedBins) {
   perturbed_bins(m, std::vector<double>(n, 1.0), rho0, cell.gas, drag, compact);
   const CellCoefficients own = coefficients(nullptr), given = coefficients(&same),
                          other = coefficients(&compact);
-  for (const auto member :
-       {&CellCoefficients::kernel, &CellCoefficients::p_frag,
-        &CellCoefficients::dlnk_dlnu, &CellCoefficients::dp_dlnu,
-        &CellCoefficients::ln_u_ratio, &CellCoefficients::dd_dlnu_i,
-        &CellCoefficients::dd_dlnu_j, &CellCoefficients::ln_phi_floor,
-        &CellCoefficients::dlnfloor_dlnu, &CellCoefficients::relax_rate,
-        &CellCoefficients::drelax_dgrowth})
-    EXPECT_TRUE(own.*member == given.*member);
+  for (const auto member : kCoefficientVectors) EXPECT_TRUE(own.*member == given.*member);
   EXPECT_FALSE(own.dlnk_dlnu == other.dlnk_dlnu);
   EXPECT_FALSE(own.dlnfloor_dlnu == other.dlnfloor_dlnu);
+}
+
+// A cell's workspace keeps tables of the grid, the gas and the monomers from call to call
+// (CoefficientWorkspace): after serving another gas, state and monomer mass it gives the
+// coefficients of a fresh call bit for bit, the fragments' ceiling that of the cell's own
+// monomers.
+TEST(CoagulationPorous, AReusedWorkspaceGivesTheCoefficientsOfAFreshOne) {
+  const FluffyCell cell;
+  CellModel model = cell.model;
+  model.outcomes = {
+      .fragmentation = true, .cratering = true, .v_frag = 100.0, .v_eros = 100.0};
+  const int n = cell.n;
+  const std::span<const double> sigma(cell.y.data(), n), psi(cell.y.data() + n, n);
+  CellModel other = model;
+  other.species.m0 *= 8.0;
+  const std::vector<double> compact(sigma.begin(), sigma.end());
+  for (const bool derivatives : {false, true}) {
+    CoefficientWorkspace ws;
+    CellCoefficients c = cell_coefficients(cell.eng, sigma, compact, mmsn_gas(2.0), other,
+                                           !derivatives, &ws);
+    c = cell_coefficients(cell.eng, sigma, psi, cell.gas, model, derivatives, &ws,
+                          std::move(c));
+    const CellCoefficients fresh =
+        cell_coefficients(cell.eng, sigma, psi, cell.gas, model, derivatives);
+    for (const auto member : kCoefficientVectors)
+      EXPECT_TRUE(c.*member == fresh.*member) << "derivatives " << derivatives;
+    ASSERT_EQ(c.fragment_u_cap.size(), static_cast<std::size_t>(n));
+    for (int k = 0; k < n; ++k)
+      EXPECT_EQ(c.fragment_u_cap[k],
+                fragment_u_ceiling(cell.eng.grid().m[k], model.species.m0));
+    EXPECT_GT(c.fragment_u_cap[n - 1], 1.0);
+  }
 }
 
 }  // namespace
