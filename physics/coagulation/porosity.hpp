@@ -58,16 +58,17 @@ inline constexpr double kTinyEmptyScale = 1e-300;
 //! bin that holds mass, written
 //!   u = max(1, (|psi| + e) / (|sigma| + e)),
 //! with e [g cm^-2] the empty-bin scale (kEmptyBinFraction times the run's dust scale).
-//! The engine books the volume of a bin's collisions as u times their mass
-//! (smoluchowski.hpp), so the rule sets what a bin's volume does:
+//! u sets a bin's kernel, the voids of its sticking products and its floor; the volume
+//! its collisions move is its own psi in proportion to their mass, whatever u
+//! (smoluchowski.hpp). The rule:
 //! * Continuous in (sigma, psi) everywhere and bounded by the data: a nearly empty bin
 //!   whose sigma or psi crosses 0 (round-off and integration error make such bins
-//!   slightly negative, sigma has no >= 0 constraint) no longer jumps between psi/sigma
+//!   slightly negative, sigma has no >= 0 constraint) does not jump between psi/sigma
 //!   and 1, and u does not diverge as sigma -> 0 with psi != 0. A bin whose sigma and psi
 //!   are both negative (a negative copy of a bin) keeps its u; one whose psi has the
-//!   wrong sign carries volume of its mass's sign: with u = 1 held for psi < 0 a bin
-//!   gained volume from its own (negative) psi through the products' voids, e^d > 1, a
-//!   runaway (psi -> -1e22 in a few years on the porous MMSN scene).
+//!   wrong sign has u = |psi|/sigma >= 1, so that the voids e^d - 1 of its products
+//!   scale a positive volume (a signed u, linear in psi, let a negative psi feed itself
+//!   through them: psi -> -1e22 in a few years on the porous MMSN scene).
 //! * Where sigma and psi are well above e, u = psi/sigma to e/sigma; an empty bin
 //!   (|sigma|, |psi| << e) is compact, phi = 1, and enters only through the rate of its
 //!   first collisions, as before.

@@ -133,6 +133,8 @@ class Smoluchowski {
             p.gain_hi = (1.0 - eps) * m[k + 1];
           }
         }
+        p.frac_lo = p.gain_lo / mp;
+        p.frac_hi = p.gain_hi / mp;
         if (i - j > crater_bins_) {  // cratering: remnant m_i - x, fragments (1 + e) m_j
           p.crater = true;
           const double x = frag_.excavated_mass * m[j];
@@ -197,40 +199,45 @@ class Smoluchowski {
     frag_psi_.assign(n, 0.0);
     for (int k = 0; k < n; ++k) num_[k] = sigma[k] / m[k];
     porosities(c, sigma, psi);
+    // a bin takes part where it holds mass, or volume (psi, which its partners'
+    // collisions move on even where sigma = 0)
+    auto idle = [&](int k) { return num_[k] == 0.0 && (!porous || w_[k] == 0.0); };
     for (int i = 0; i < n; ++i) {
-      if (num_[i] == 0.0) continue;
+      if (idle(i)) continue;
       for (int j = 0; j <= i; ++j) {
-        if (num_[j] == 0.0) continue;
+        if (idle(j)) continue;
         const Pair& p = pairs_[pair_index(i, j)];
         const std::size_t ij = static_cast<std::size_t>(i) * n + j;
         const double kk = (i == j ? 0.5 : 1.0) * c.kernel[ij];
         const double rate = kk * num_[i] * num_[j];
         const double pf = frag ? c.p_frag[ij] : 0.0;
-        const double r_stick = (1.0 - pf) * rate;
-        if (p.k >= 0 && r_stick != 0.0) {
+        const double f_stick = (1.0 - pf) * kk, r_stick = (1.0 - pf) * rate;
+        if (p.k >= 0 && f_stick != 0.0) {
           dsigma[j] -= m[j] * r_stick;
           dsigma[i] += p.loss_i * r_stick;
           if (p.k != i) dsigma[p.k] += p.gain_lo * r_stick;
           dsigma[p.k + 1] += p.gain_hi * r_stick;
           if (porous) {
-            // u_i R and u_j R: the partners' volume measure per collision, u by the rule
-            // of bin_porosity (so that a bin with psi or sigma of the wrong sign carries
-            // volume of its mass's sign, m u, and feeds no runaway of psi)
-            const double ut = u_[i].u * r_stick, uj = u_[j].u * r_stick;
+            // the partners carry their own volume, psi in proportion to mass: v_t and v_j
+            // per unit of their mass lost (finite at sigma = 0, linear in psi, so that a
+            // psi of either sign decays with its bin's mass); the product adds the voids
+            // of its rule, m_p u_p - m_i u_i - m_j u_j, at the bins' u (bin_porosity)
+            const double vt = f_stick * w_[i] * num_[j], vj = f_stick * num_[i] * w_[j];
             const double d = has_d ? c.ln_u_ratio[ij] : 0.0;
-            const double ed = std::exp(d);
-            dpsi[j] -= m[j] * uj;
+            const double voids = r_stick * product_voids(m[i], m[j], u_[i].u, u_[j].u, d);
+            const double moved_j = m[j] * vj + voids;
+            dpsi[j] -= m[j] * vj;
             if (p.k == i) {
-              dpsi[i] += (p.loss_i + p.gain_lo * std::expm1(d)) * ut;
+              dpsi[i] += p.frac_lo * moved_j - p.frac_hi * m[i] * vt;
             } else {
-              dpsi[i] -= m[i] * ut;
-              dpsi[p.k] += p.gain_lo * ed * ut;
+              dpsi[i] -= m[i] * vt;
+              dpsi[p.k] += p.frac_lo * (m[i] * vt + moved_j);
             }
-            dpsi[p.k + 1] += p.gain_hi * ed * ut;
+            dpsi[p.k + 1] += p.frac_hi * (m[i] * vt + moved_j);
           }
         }
-        const double r_frag = pf * rate;
-        if (r_frag == 0.0) continue;
+        const double f_frag = pf * kk, r_frag = pf * rate;
+        if (f_frag == 0.0) continue;
         dsigma[j] -= m[j] * r_frag;
         frag_mass_[p.frag_bin] += p.frag_mass * r_frag;
         if (p.crater) {
@@ -241,16 +248,17 @@ class Smoluchowski {
           dsigma[i] -= m[i] * r_frag;
         }
         if (porous) {
-          const double ut = u_[i].u * r_frag, uj = u_[j].u * r_frag;
-          dpsi[j] -= m[j] * uj;
+          // remnants and fragments carry their parents' volume per mass (as sticking)
+          const double vt = f_frag * w_[i] * num_[j], vj = f_frag * num_[i] * w_[j];
+          dpsi[j] -= m[j] * vj;
           if (p.crater) {
-            dpsi[i] += p.target_net * ut;
-            dpsi[p.rem_bin] += p.rem_lo * ut;
-            if (!p.rem_same) dpsi[p.rem_bin + 1] += p.rem_hi * ut;
-            frag_psi_[p.frag_bin] += m[j] * uj + p.excavated * ut;
+            dpsi[i] += p.target_net * vt;
+            dpsi[p.rem_bin] += p.rem_lo * vt;
+            if (!p.rem_same) dpsi[p.rem_bin + 1] += p.rem_hi * vt;
+            frag_psi_[p.frag_bin] += m[j] * vj + p.excavated * vt;
           } else {
-            dpsi[i] -= m[i] * ut;
-            frag_psi_[p.frag_bin] += m[i] * ut + m[j] * uj;
+            dpsi[i] -= m[i] * vt;
+            frag_psi_[p.frag_bin] += m[i] * vt + m[j] * vj;
           }
         }
       }
@@ -296,7 +304,9 @@ class Smoluchowski {
     };
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j <= i; ++j) {
-        if (num_[i] == 0.0 && num_[j] == 0.0) continue;
+        if (num_[i] == 0.0 && num_[j] == 0.0 &&
+            (!porous || (w_[i] == 0.0 && w_[j] == 0.0)))
+          continue;
         const Pair& p = pairs_[pair_index(i, j)];
         const std::size_t ij = static_cast<std::size_t>(i) * n + j;
         const double kk = (i == j ? 0.5 : 1.0) * c.kernel[ij];
@@ -350,47 +360,53 @@ class Smoluchowski {
             at(row, j) += coef * drj;
             if (has_dk) kernel_terms(row, coef * rate);
           };
-          // the partners' volume rates U_t = u_i R and U_j = u_j R; the term c_t U_t +
-          // c_j U_j booked by `book(col, derivative)`
-          const double ui = porous ? u_[i].u : 1.0, uj = porous ? u_[j].u : 1.0;
-          const double u_t = ui * rate, u_j = uj * rate;
+          // the partners' volume rates V_t = f kk w_i n_j and V_j = f kk n_i w_j (w =
+          // psi/m, rhs()); the term c_t V_t + c_j V_j booked by `book(col, derivative)`
+          const double vt = porous ? f * kk * w_[i] * num_[j] : 0.0;
+          const double vj = porous ? f * kk * num_[i] * w_[j] : 0.0;
           auto vol = [&](auto&& book, double c_t, double c_j) {
-            const BinPorosity &pi = u_[i], &pj = u_[j];
-            book(i, (c_t * ui + c_j * uj) * dri + c_t * u_t * pi.dlnu_dsigma);
-            book(j, (c_t * ui + c_j * uj) * drj + c_j * u_j * pj.dlnu_dsigma);
-            book(n + i, c_t * u_t * pi.dlnu_dpsi);
-            book(n + j, c_j * u_j * pj.dlnu_dpsi);
-            if (has_dk) u_terms(book, c_t * u_t + c_j * u_j);
+            book(i, c_j * f * kk * w_[j] / m[i]);
+            book(j, c_t * f * kk * w_[i] / m[j]);
+            book(n + i, c_t * dri);
+            book(n + j, c_j * drj);
+            if (has_dk) u_terms(book, c_t * vt + c_j * vj);
           };
-          auto vol_t = [&](int row, double coef) {
-            vol([&](int col, double v) { at(n + row, col) += v; }, coef, 0.0);
+          auto vol_at = [&](int row, double c_t, double c_j) {
+            vol([&](int col, double v) { at(n + row, col) += v; }, c_t, c_j);
           };
-          auto vol_j = [&](int row, double coef) {
-            vol([&](int col, double v) { at(n + row, col) += v; }, 0.0, coef);
-          };
+          auto vol_t = [&](int row, double coef) { vol_at(row, coef, 0.0); };
           if (outcome == 0) {
             mass(j, -m[j]);
             mass(i, p.loss_i);
             if (p.k != i) mass(p.k, p.gain_lo);
             mass(p.k + 1, p.gain_hi);
             if (porous) {
+              // the product's voids R v(u_i, u_j, d): through R, the bins' u and d(u_i,
+              // u_j)
               const double d = has_d ? c.ln_u_ratio[ij] : 0.0;
-              const double ed = std::exp(d);
-              vol_j(j, -m[j]);
+              const double v = product_voids(m[i], m[j], u_[i].u, u_[j].u, d);
+              const double grow = (m[i] + m[j]) * u_[i].u * std::exp(d);
+              const double gv_i =
+                  (m[i] + m[j]) * u_[i].u * std::expm1(d) + m[j] * u_[i].u + grow * gd_i;
+              const double gv_j = -m[j] * u_[j].u + grow * gd_j;
+              auto voids_at = [&](int row, double coef) {
+                const double cr = coef * rate;
+                at(n + row, i) += coef * v * dri + cr * gv_i * u_[i].dlnu_dsigma;
+                at(n + row, j) += coef * v * drj + cr * gv_j * u_[j].dlnu_dsigma;
+                at(n + row, n + i) += cr * gv_i * u_[i].dlnu_dpsi;
+                at(n + row, n + j) += cr * gv_j * u_[j].dlnu_dpsi;
+                if (has_dk) kernel_terms(n + row, cr * v);
+              };
+              vol_at(j, 0.0, -m[j]);
               if (p.k == i) {
-                vol_t(i, p.loss_i + p.gain_lo * std::expm1(d));
+                vol_at(i, -p.frac_hi * m[i], p.frac_lo * m[j]);
               } else {
                 vol_t(i, -m[i]);
-                vol_t(p.k, p.gain_lo * ed);
+                vol_at(p.k, p.frac_lo * m[i], p.frac_lo * m[j]);
               }
-              vol_t(p.k + 1, p.gain_hi * ed);
-              if (has_dk && (gd_i != 0.0 || gd_j != 0.0)) {
-                // the product's volume gain[k] e^d U_t through d(u_i, u_j)
-                gi = gd_i;
-                gj = gd_j;
-                kernel_terms(n + p.k, p.gain_lo * ed * u_t);
-                kernel_terms(n + p.k + 1, p.gain_hi * ed * u_t);
-              }
+              voids_at(p.k, p.frac_lo);
+              vol_at(p.k + 1, p.frac_hi * m[i], p.frac_hi * m[j]);
+              voids_at(p.k + 1, p.frac_hi);
             }
             continue;
           }
@@ -418,15 +434,15 @@ class Smoluchowski {
           if (has_dk)
             u_terms([&](int col, double v) { gm(col) += v; }, p.frag_mass * rate);
           if (porous) {
-            vol_j(j, -m[j]);
-            // fragments' volume: m_j u_j + (crater ? x : m_i) u_t
+            vol_at(j, 0.0, -m[j]);
+            // fragments' volume: m_j V_j + (crater ? x : m_i) V_t
             const double ct = p.crater ? p.excavated : m[i];
             target_outcome(vol_t);
             auto g = [&](int col) -> double& {
               return g_psi_[static_cast<std::size_t>(col) * n + q];
             };
             vol([&](int col, double v) { g(col) += v; }, ct, m[j]);
-            frag_psi_[q] += ct * u_t + m[j] * u_j;
+            frag_psi_[q] += ct * vt + m[j] * vj;
           }
         }
       }
@@ -450,6 +466,7 @@ class Smoluchowski {
     int k = -1;           //!< lower bin of the sticking product; -1: beyond the grid
     double loss_i = 0.0;  //!< mass change of bin i per sticking collision [g]
     double gain_lo = 0.0, gain_hi = 0.0;  //!< mass into bins k, k+1 [g]
+    double frac_lo = 0.0, frac_hi = 0.0;  //!< their fractions of m_i + m_j [-]
     bool crater = false;
     int frag_bin = 0;                   //!< bin of the largest fragment
     double frag_mass = 0.0;             //!< mass of the fragments [g]
@@ -505,13 +522,22 @@ class Smoluchowski {
     }
   }
 
+  //! The voids of a sticking product per collision, m_p u_p - m_i u_i - m_j u_j [g], with
+  //! u_p = u_i e^d (d_ij of CellCoefficients), written without cancelling terms.
+  static double product_voids(double m_i, double m_j, double u_i, double u_j, double d) {
+    return (m_i + m_j) * u_i * std::expm1(d) + m_j * (u_i - u_j);
+  }
+
   //! u_k of every bin with its derivatives by sigma_k and psi_k (bin_porosity) into u_
   //! (porous; empty otherwise).
   void porosities(const CellCoefficients& c, std::span<const double> sigma,
                   std::span<const double> psi) const {
     u_.resize(psi.size());
-    for (std::size_t k = 0; k < psi.size(); ++k)
+    w_.resize(psi.size());
+    for (std::size_t k = 0; k < psi.size(); ++k) {
       u_[k] = bin_porosity(sigma[k], psi[k], c.empty_scale);
+      w_[k] = psi[k] / grid_.m[k];
+    }
   }
 
   static std::size_t pair_index(int i, int j) {
@@ -604,7 +630,7 @@ class Smoluchowski {
   int crater_bins_ = 0;
   std::vector<Pair> pairs_;
   std::vector<double> weight_, inv_z_;
-  mutable std::vector<double> num_, frag_mass_, frag_psi_, g_mass_, g_psi_;
+  mutable std::vector<double> num_, w_, frag_mass_, frag_psi_, g_mass_, g_psi_;
   mutable std::vector<double> slope_psi_, slope_mass_;
   mutable std::vector<BinPorosity> u_;
 };

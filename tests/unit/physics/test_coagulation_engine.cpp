@@ -84,18 +84,36 @@ TEST(CoagulationEngine, JacobianMatchesFiniteDifferencesPorous) {
   EXPECT_LT(jacobian_error(eng, synthetic_cell(eng, true, true), y, true), 1e-7);
 }
 
-TEST(CoagulationEngine, JacobianFollowsTheCoefficientsThroughPorosity) {
-  // synthetic coefficients that move with u = psi/sigma: K_ij ∝ exp(g_i dln u_i + g_j
-  // dln u_j), p_ij and d_ij linear in ln u; the right-hand side rebuilt from the state
-  // at each difference, the Jacobian fed the derivatives
-  const Smoluchowski eng(MassGrid(1.0, 1e6, 5.0));
-  const int n = eng.size();
-  const auto sigma = synthetic_sigma(n);
-  const auto psi = synthetic_psi(sigma);
+// A state off the physical cone psi >= sigma >= 0 that integration error makes in nearly
+// empty bins, away from bin_porosity's kinks: psi < 0 < sigma (u = |psi|/sigma), 0 < psi
+// < sigma (u held at 1), and sigma, psi < 0 with |psi| > |sigma|, among bins inside it.
+std::vector<double> state_off_the_cone(const std::vector<double>& sigma,
+                                       const std::vector<double>& psi) {
+  const int n = static_cast<int>(sigma.size());
   std::vector<double> y = sigma;
   y.insert(y.end(), psi.begin(), psi.end());
+  for (int k = 0; k < n; ++k) {
+    if (k % 4 == 1) y[n + k] = -2.5 * sigma[k];
+    if (k % 4 == 2) y[n + k] = 0.4 * sigma[k];
+    if (k % 4 == 3 && k < n / 2) {
+      y[k] = -0.5 * sigma[k];
+      y[n + k] = -1.5 * sigma[k];
+    }
+  }
+  return y;
+}
+
+// synthetic coefficients that move with the bins' u (bin_porosity): K_ij ∝ exp(g_i dln
+// u_i + g_j dln u_j), p_ij and d_ij linear in ln u; the right-hand side rebuilt from the
+// state at each difference, the Jacobian fed the derivatives
+double synthetic_full_jacobian_error(const Smoluchowski& eng,
+                                     const std::vector<double>& y) {
+  const int n = eng.size();
+  auto ln_u = [&](const std::vector<double>& yy, int k) {
+    return std::log(bin_porosity(yy[k], yy[n + k], kTinyEmptyScale).u);
+  };
   std::vector<double> ln_u0(n);
-  for (int k = 0; k < n; ++k) ln_u0[k] = std::log(psi[k] / sigma[k]);
+  for (int k = 0; k < n; ++k) ln_u0[k] = ln_u(y, k);
   auto coefficients = [&](const std::vector<double>& yy) {
     CellCoefficients c = synthetic_cell(eng, true, true);
     c.dlnk_dlnu.resize(static_cast<std::size_t>(n) * n);
@@ -105,17 +123,16 @@ TEST(CoagulationEngine, JacobianFollowsTheCoefficientsThroughPorosity) {
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) {
         const std::size_t ij = static_cast<std::size_t>(i) * n + j;
-        const double li = std::log(yy[n + i] / yy[i]) - ln_u0[i];
-        const double lj = std::log(yy[n + j] / yy[j]) - ln_u0[j];
+        const double li = ln_u(yy, i) - ln_u0[i];
+        const double lj = ln_u(yy, j) - ln_u0[j];
         const double gi = 0.3 + 0.01 * i, gj = 0.3 + 0.01 * j;
         c.kernel[ij] *= std::exp(i == j ? (gi + gj) * li : gi * li + gj * lj);
         c.dlnk_dlnu[ij] = i == j ? gi + gj : gi;
         c.p_frag[ij] = 0.5 + 0.3 * std::sin(i + j) + 0.1 * (i == j ? li : li + lj);
         c.dp_dlnu[ij] = 0.1;
         const int hi = std::max(i, j), lo = std::min(i, j);
-        const double lhi = std::log(yy[n + hi] / yy[hi]) - ln_u0[hi];
-        const double llo = std::log(yy[n + lo] / yy[lo]) - ln_u0[lo];
-        c.ln_u_ratio[ij] += 0.2 * lhi + 0.1 * llo;
+        c.ln_u_ratio[ij] +=
+            0.2 * (ln_u(yy, hi) - ln_u0[hi]) + 0.1 * (ln_u(yy, lo) - ln_u0[lo]);
         if (i >= j) {
           c.dd_dlnu_i[ij] = i == j ? 0.3 : 0.2;
           c.dd_dlnu_j[ij] = i == j ? 0.0 : 0.1;
@@ -125,7 +142,58 @@ TEST(CoagulationEngine, JacobianFollowsTheCoefficientsThroughPorosity) {
     c.relax_rate.clear();
     return c;
   };
-  EXPECT_LT(full_jacobian_error(eng, coefficients, y), 1e-7);  // measured 3.4e-10
+  return full_jacobian_error(eng, coefficients, y);
+}
+
+TEST(CoagulationEngine, JacobianFollowsTheCoefficientsThroughPorosity) {
+  const Smoluchowski eng(MassGrid(1.0, 1e6, 5.0));
+  const auto sigma = synthetic_sigma(eng.size());
+  const auto psi = synthetic_psi(sigma);
+  std::vector<double> y = sigma;
+  y.insert(y.end(), psi.begin(), psi.end());
+  EXPECT_LT(synthetic_full_jacobian_error(eng, y), 1e-7);  // measured 3.4e-10
+}
+
+TEST(CoagulationEngine, JacobianMatchesFiniteDifferencesOffThePhysicalCone) {
+  // bins whose psi has the wrong sign or is below sigma carry their own (signed) volume:
+  // the Jacobian follows that booking and the voids at the bins' u, with K, p, d fixed
+  // and with them moving through u
+  const Smoluchowski eng(MassGrid(1.0, 1e6, 5.0));
+  const auto sigma = synthetic_sigma(eng.size());
+  const auto y = state_off_the_cone(sigma, synthetic_psi(sigma));
+  EXPECT_LT(jacobian_error(eng, synthetic_cell(eng, true, true), y, true), 1e-7);
+  EXPECT_LT(synthetic_full_jacobian_error(eng, y), 1e-7);
+}
+
+TEST(CoagulationEngine, ABinLosesVolumeInProportionToItsMassForEitherSignOfPsi) {
+  // bin 0 gains nothing by sticking (m_0 + m_0 > m_1 at 5 bins per decade): its psi must
+  // leave at its mass's fractional rate whatever its sign or its u, so that a psi below
+  // zero decays (the rule u |psi|/sigma per unit mass made psi < 0 grow at that rate);
+  // with sigma_0 = 0 its orphan volume leaves at the same rate, continuously
+  const Smoluchowski eng(MassGrid(1.0, 1e6, 5.0));
+  const int n = eng.size();
+  auto c = synthetic_cell(eng, false, true);
+  c.ln_phi_floor.clear();
+  c.relax_rate.clear();
+  auto sigma = synthetic_sigma(n);
+  auto psi = synthetic_psi(sigma);
+  std::vector<double> ds(n), dp(n);
+  eng.rhs(c, sigma, psi, ds, dp);
+  const double rate = ds[0] / sigma[0];  // d ln sigma_0 / dt < 0
+  ASSERT_LT(rate, 0.0);
+  for (const double ratio : {3.0, 0.4, -2.5}) {  // psi_0/sigma_0: u = 3, held at 1, |.|
+    psi[0] = ratio * sigma[0];
+    eng.rhs(c, sigma, psi, ds, dp);
+    EXPECT_NEAR(dp[0] / psi[0], rate, 1e-14 * std::abs(rate))
+        << "psi_0/sigma_0 " << ratio;
+  }
+  // the limit sigma_0 -> 0 (no self-collisions of bin 0 left)
+  sigma[0] *= 1e-20;
+  eng.rhs(c, sigma, psi, ds, dp);
+  const double rate_empty = ds[0] / sigma[0];
+  sigma[0] = 0.0;
+  eng.rhs(c, sigma, psi, ds, dp);
+  EXPECT_NEAR(dp[0] / psi[0], rate_empty, 1e-14 * std::abs(rate_empty));
 }
 
 TEST(CoagulationEngine, PorousJacobianOfTheDiskCellMatchesFullDifferences) {
@@ -201,12 +269,25 @@ TEST(CoagulationEngine, VolumeMeasureConservedBySplitAndFragments) {
   const auto [mass, vol] = imbalance(eng, c, sigma, psi);
   EXPECT_LT(mass, 1e-14);
   EXPECT_LT(vol, 1e-13);
+  // off the physical cone (psi of the wrong sign, or below sigma) the partners carry
+  // their own signed volume and the products add the voids at the bins' u: zero here
+  std::vector<double> psi_off = psi;
+  for (int k = 1; k < n; k += 3) psi_off[k] = (k % 2 == 0 ? 0.4 : -2.5) * sigma[k];
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      const double ui = bin_porosity(sigma[i], psi_off[i], kTinyEmptyScale).u;
+      const double uj = bin_porosity(sigma[j], psi_off[j], kTinyEmptyScale).u;
+      c.ln_u_ratio[static_cast<std::size_t>(i) * n + j] =
+          std::log1p(m[j] * uj / (m[i] * ui)) - std::log1p(m[j] / m[i]);
+    }
+  EXPECT_LT(imbalance(eng, c, sigma, psi_off).second, 1e-13);
   // fragmentation and cratering only: fragments and remnants keep their parents' volume
   auto f = synthetic_cell(eng, true, true);
   f.ln_phi_floor.clear();
   f.relax_rate.clear();
   for (auto& p : f.p_frag) p = 1.0;
   EXPECT_LT(imbalance(eng, f, sigma, psi).second, 1e-14);
+  EXPECT_LT(imbalance(eng, f, sigma, psi_off).second, 1e-14);
 }
 
 TEST(CoagulationEngine, OutcomesOfOnePairAreDustPys) {
