@@ -297,6 +297,7 @@ class Smoluchowski {
     g_mass_.assign(static_cast<std::size_t>(nv) * n, 0.0);
     if (porous) g_psi_.assign(static_cast<std::size_t>(nv) * n, 0.0);
     // the fragments' mass and volume rates themselves, for the capped volume's slopes
+    const bool capped = porous && frag && !c.fragment_u_cap.empty();
     frag_mass_.assign(n, 0.0);
     frag_psi_.assign(n, 0.0);
     auto at = [&](int row, int col) -> double& {
@@ -430,7 +431,7 @@ class Smoluchowski {
           };
           gm(i) += p.frag_mass * dri;
           gm(j) += p.frag_mass * drj;
-          frag_mass_[q] += p.frag_mass * rate;
+          if (capped) frag_mass_[q] += p.frag_mass * rate;
           if (has_dk)
             u_terms([&](int col, double v) { gm(col) += v; }, p.frag_mass * rate);
           if (porous) {
@@ -442,13 +443,12 @@ class Smoluchowski {
               return g_psi_[static_cast<std::size_t>(col) * n + q];
             };
             vol([&](int col, double v) { g(col) += v; }, ct, m[j]);
-            frag_psi_[q] += ct * vt + m[j] * vj;
+            if (capped) frag_psi_[q] += ct * vt + m[j] * vj;
           }
         }
       }
     }
     if (frag) {
-      const bool capped = porous && !c.fragment_u_cap.empty();
       if (capped) fragment_volume_slopes(c.fragment_u_cap);
       for (int col = 0; col < nv; ++col) {
         spread_column(&g_mass_[static_cast<std::size_t>(col) * n], 0, col, jac, nv);
