@@ -13,6 +13,7 @@
 
 #include "disk/local_gas.hpp"
 #include "physics/coagulation/collision_kernel.hpp"
+#include "physics/coagulation/compact_pair_table.hpp"
 #include "physics/coagulation/pair_speed_evaluator.hpp"
 #include "physics/coagulation/porosity.hpp"
 #include "physics/coagulation/smoluchowski.hpp"
@@ -100,10 +101,14 @@ inline void perturbed_bins(std::span<const double> m, std::span<const double> ph
 
 //! What cell_coefficients keeps from call to call for one cell: its buffers, the pair
 //! speeds' per-pair Brownian terms (PairSpeedEvaluator, rebuilt when the gas temperature
-//! changes) and the product rules' mass terms of every pair of the grid.
+//! changes), the product rules' mass terms of every pair of the grid and the
+//! coefficients of the pairs of compact bins (CompactPairTable, rebuilt when the gas
+//! changes).
 struct CoefficientWorkspace {
   PairSpeedEvaluator speeds;
   std::vector<double> phi, u;        //!< per bin [-]
+  std::vector<char> compact;         //!< per bin: u = 1 exactly
+  CompactPairTable compact_pairs;    //!< porous: the pairs of two compact bins
   BinProperties bins;                //!< per bin, at phi
   std::vector<BinSpeedTerms> terms;  //!< per bin, at St
   std::vector<double> dv;            //!< N x N [cm s^-1]
@@ -177,15 +182,20 @@ inline CellCoefficients cell_coefficients(
   std::vector<double>& u = ws.u;
   phi.assign(n, 1.0);
   u.assign(n, 1.0);
+  ws.compact.assign(n, 1);
+  int n_compact = n;
   if (porous)
     for (int k = 0; k < n; ++k) {
       const BinPorosity b = bin_porosity(sigma[k], psi[k], model.empty_scale);
       u[k] = b.u;
       phi[k] = b.phi();
+      ws.compact[k] = u[k] == 1.0;
+      n_compact -= u[k] == 1.0 ? 0 : 1;
     }
   const Species& sp = model.species;
   const GrowthOptions& o = model.growth;
   const OutcomeSwitches& s = model.outcomes;
+  const double e_threshold = 3.0 * o.b * sp.e_roll;  // spec §4.2
   c.empty_scale = model.empty_scale;
   const auto& m = grid.m;
   bin_properties(grid, phi, sp.rho0, gas, o.drag, ws.bins);
@@ -193,6 +203,19 @@ inline CellCoefficients cell_coefficients(
   ws.speeds.set_gas(gas, m, o.turbulence);
   ws.terms.resize(n);
   for (int k = 0; k < n; ++k) ws.terms[k] = ws.speeds.bin_terms(bins.St[k]);
+  if (porous) ws.set_grid(m);
+  // porous: the pairs of two compact bins from the table of the gas, where they are
+  // enough (about N / 2 pairs or more) to pay for its build at each change of the gas
+  const CompactPairTable* table = nullptr;
+  if (porous && n_compact * n_compact >= n) {
+    ws.compact_pairs.set(
+        grid, ws.masses, ws.speeds,
+        {gas, sp.rho0, e_threshold, o.drag, o.turbulence, s, engine.crater_bins()});
+    table = &ws.compact_pairs;
+  }
+  const auto from_table = [&](int i, int j) {
+    return table != nullptr && ws.compact[i] && ws.compact[j];
+  };
   clear_coefficients(c);
   // the pair speeds (spec §3), the kernel (spec §15.2) and the outcome probabilities
   // (pair_loss_probability: fragmentation and cratering, spec §15.2)
@@ -203,10 +226,14 @@ inline CellCoefficients cell_coefficients(
     c.p_frag.resize(nn);
   else
     c.p_frag.clear();
+  if (table != nullptr) table->fill_rates(ws.compact, ws.dv, c.kernel, c.p_frag);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) {
       const std::size_t ij = static_cast<std::size_t>(i) * n + j;
       const std::size_t ji = static_cast<std::size_t>(j) * n + i;
+      if (from_table(i, j)) continue;
+      // pair_rates (compact_pair_table.hpp) written out: the same bits, and the
+      // compiler inlines the pair's functions here as without the table
       const double v = ws.speeds.dv(ws.terms[i], ws.terms[j], i, j);
       ws.dv[ij] = ws.dv[ji] = v;
       c.kernel[ij] = c.kernel[ji] =
@@ -260,11 +287,11 @@ inline CellCoefficients cell_coefficients(
     }
   }
   c.ln_u_ratio.assign(nn, 0.0);
+  if (table != nullptr) table->fill_ln_u_ratio(ws.compact, c.ln_u_ratio);
   if (derivatives) {
     c.dd_dlnu_i.assign(nn, 0.0);
     c.dd_dlnu_j.assign(nn, 0.0);
   }
-  ws.set_grid(m);
   ws.s_c.resize(n);
   ws.s_c_step.resize(n);
   for (int i = 0; i < n; ++i) {
@@ -273,14 +300,15 @@ inline CellCoefficients cell_coefficients(
                                        perturbed->a[i], perturbed->st[i], gas, o.drag)
                                  : ws.s_c[i];
   }
-  const double e_threshold = 3.0 * o.b * sp.e_roll;  // spec §4.2
   for (int i = 0; i < n; ++i) {
     const double s_c = ws.s_c[i];
     for (int j = 0; j <= i; ++j) {
       const std::size_t ij = static_cast<std::size_t>(i) * n + j;
       const PairMasses& pm = ws.masses[ij];
-      const double e_imp = impact_energy(pm, dv[ij]);  // spec §15.3
-      c.ln_u_ratio[ij] = product_ln_u_ratio(pm, u[i], u[j], e_imp, e_threshold, s_c);
+      if (!from_table(i, j)) {
+        const double e_imp = impact_energy(pm, dv[ij]);  // spec §15.3
+        c.ln_u_ratio[ij] = product_ln_u_ratio(pm, u[i], u[j], e_imp, e_threshold, s_c);
+      }
       if (!derivatives) continue;
       // for the Jacobian: d by ln u_i and ln u_j, through the volumes, the impact
       // energy and (u_i) the target's compression slope

@@ -154,9 +154,15 @@ inline double compression_slope_of_target(double a, double St, const LocalGas& g
 }
 
 //! ln(u_p / u_i) of a sticking pair at impact energy e_imp [erg] against the threshold
-//! 3 b E_roll [erg]: hit-and-stick and compression blended (above) [-].
-inline double product_ln_u_ratio(const PairMasses& pm, double u_i, double u_j,
-                                 double e_imp, double e_threshold, double s_c) {
+//! 3 b E_roll [erg]: hit-and-stick and compression blended (above) [-]. Flattened
+//! (log_step and soft_min inlined; the libm calls stay calls): cell_coefficients calls it
+//! for N^2/2 pairs, and GCC otherwise keeps log_step out of line there when the unit has
+//! more callers of it (8 % more instructions per porous rebuild under callgrind,
+//! tests/bench/results/porous_cost.md). Inlining moves no bit: the build targets
+//! x86-64 without FMA, so nothing is contracted.
+[[gnu::flatten]] inline double product_ln_u_ratio(const PairMasses& pm, double u_i,
+                                                  double u_j, double e_imp,
+                                                  double e_threshold, double s_c) {
   const double w = log_step(e_imp, e_threshold, 0.1);
   if (w == 1.0) return ln_u_ratio_compression(pm, u_i, u_j, s_c);
   const double hs = ln_u_ratio_hit_and_stick(pm, u_i, u_j);

@@ -3,9 +3,11 @@
 //! right-hand side, one dense analytic Jacobian, one rebuild of the cell's coefficients
 //! (kernel, pair speeds, fragmentation probabilities, product porosity, floors; for the
 //! porous Jacobian also their derivatives by the porosity) and one dense LU of the Newton
-//! matrix, to plan the disk-wide solver of issue 35 (100 cells x 120 bins x 2). Results:
-//! tests/bench/results/coagulation_cell.md.
-//!   build/tests/bench_coagulation [repeats]
+//! matrix, to plan the disk-wide solver of issue 35 (100 cells x 120 bins x 2); last,
+//! porous with the upper half of the bins empty (compact, u = 1: their pairs from the
+//! CompactPairTable), as a disk's cells early in a run. Results:
+//! tests/bench/results/coagulation_cell.md, tests/bench/results/porous_cost.md.
+//!   build/tests/bench_coagulation [repeats [variant]]   (variant 0-3: that row only)
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
@@ -46,25 +48,35 @@ double time_it(int repeats, const std::function<void()>& f) {
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::atoi(argv[1]) : 50;
+  const int only = argc > 2 ? std::atoi(argv[2]) : -1;
   const LocalGas gas = mmsn_gas(5.0);
   const CellModel model = panoptic::testing::ice_cell_model(
       {.fragmentation = true, .cratering = true, .v_frag = 100.0, .v_eros = 100.0});
   const Smoluchowski eng(MassGrid(1e-12, 1e5, 7.0));
   const int n = eng.size();
-  std::vector<double> sigma(n), psi(n);
+  std::vector<double> sigma_full(n), psi(n);
   for (int k = 0; k < n; ++k) {
-    sigma[k] = 1e-3 * std::pow(eng.grid().m[k] / 1e-12, 1.0 / 6.0) *
-               std::exp(-eng.grid().m[k] / 1e2);
-    psi[k] = sigma[k] * std::exp(0.05 * k);
+    sigma_full[k] = 1e-3 * std::pow(eng.grid().m[k] / 1e-12, 1.0 / 6.0) *
+                    std::exp(-eng.grid().m[k] / 1e2);
+    psi[k] = sigma_full[k] * std::exp(0.05 * k);
   }
   std::printf(
       "| cell | bins | unknowns | coefficients [us] | RHS [us] | Jacobian [us] | dense "
       "LU [us] |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
-  for (const int variant : {0, 1, 2}) {  // compact, porous, porous + derivatives
+  // the upper half of the bins empty
+  std::vector<double> sigma_half(sigma_full), psi_half(psi);
+  std::fill(sigma_half.begin() + n / 2, sigma_half.end(), 0.0);
+  std::fill(psi_half.begin() + n / 2, psi_half.end(), 0.0);
+  // compact, porous, porous + derivatives, porous with the upper half empty
+  for (const int variant : {0, 1, 2, 3}) {
+    if (only >= 0 && variant != only) continue;
     const bool porous = variant > 0, derivatives = variant == 2;
-    const std::span<const double> p =
-        porous ? std::span<const double>(psi) : std::span<const double>();
+    const bool half = variant == 3;
+    const std::span<const double> p = !porous ? std::span<const double>()
+                                      : half  ? std::span<const double>(psi_half)
+                                              : std::span<const double>(psi);
+    const std::vector<double>& sigma = half ? sigma_half : sigma_full;
     const int nv = porous ? 2 * n : n;
     // as the distribution mode calls it: the cell's workspace and coefficients reused
     CoefficientWorkspace ws;
@@ -85,7 +97,8 @@ int main(int argc, char** argv) {
     std::printf("| %s | %d | %d | %.0f | %.0f | %.0f | %.0f |\n",
                 variant == 0   ? "compact"
                 : variant == 1 ? "porous"
-                               : "porous, d/d ln u",
+                : variant == 2 ? "porous, d/d ln u"
+                               : "porous, upper half empty",
                 n, nv, 1e6 * t_coef, 1e6 * t_rhs, 1e6 * t_jac, 1e6 * t_lu);
   }
   return 0;

@@ -174,7 +174,10 @@ TEST(CoagulationPorous, AReusedWorkspaceGivesTheCoefficientsOfAFreshOne) {
   model.outcomes = {
       .fragmentation = true, .cratering = true, .v_frag = 100.0, .v_eros = 100.0};
   const int n = cell.n;
-  const std::span<const double> sigma(cell.y.data(), n), psi(cell.y.data() + n, n);
+  const std::span<const double> sigma(cell.y.data(), n);
+  // the upper half compact (u = 1): their pairs from the workspace's CompactPairTable
+  std::vector<double> psi(cell.y.begin() + n, cell.y.end());
+  std::copy(sigma.begin() + n / 2, sigma.end(), psi.begin() + n / 2);
   CellModel other = model;
   other.species.m0 *= 8.0;
   const std::vector<double> compact(sigma.begin(), sigma.end());
@@ -194,6 +197,49 @@ TEST(CoagulationPorous, AReusedWorkspaceGivesTheCoefficientsOfAFreshOne) {
                 fragment_u_ceiling(cell.eng.grid().m[k], model.species.m0));
     EXPECT_GT(c.fragment_u_cap[n - 1], 1.0);
   }
+}
+
+// Pairs of two compact bins (u = 1 exactly: here psi_k = sigma_k in the upper half of the
+// bins) take their coefficients from the workspace's CompactPairTable: the bits of the
+// compact cell's kernel and loss probabilities, and of the product rule at u = 1 on the
+// compact bins' speeds and compression slopes. A pair with a fluffy bin differs.
+TEST(CoagulationPorous, PairsOfCompactBinsHaveTheCompactCellsCoefficients) {
+  const FluffyCell cell;
+  CellModel model = cell.model;
+  model.outcomes = {
+      .fragmentation = true, .cratering = true, .v_frag = 100.0, .v_eros = 100.0};
+  const int n = cell.n, half = n / 2;
+  const auto& m = cell.eng.grid().m;
+  const std::span<const double> sigma(cell.y.data(), n);
+  std::vector<double> psi(cell.y.begin() + n, cell.y.end());
+  std::copy(sigma.begin() + half, sigma.end(), psi.begin() + half);
+  const CellCoefficients porous =
+      cell_coefficients(cell.eng, sigma, psi, cell.gas, model, true);
+  const CellCoefficients compact =
+      cell_coefficients(cell.eng, sigma, {}, cell.gas, model);
+  const std::vector<double> ones(n, 1.0);
+  const BinProperties bins = bin_properties(cell.eng.grid(), ones, model.species.rho0,
+                                            cell.gas, model.growth.drag);
+  const std::vector<double> dv =
+      pair_speeds(cell.eng.grid(), bins, cell.gas, model.growth.turbulence);
+  const double e_threshold = 3.0 * model.growth.b * model.species.e_roll;
+  for (int i = half; i < n; ++i) {
+    const double s_c =
+        compression_slope_of_target(bins.a[i], bins.St[i], cell.gas, model.growth.drag);
+    for (int j = half; j <= i; ++j) {
+      const std::size_t ij = static_cast<std::size_t>(i) * n + j;
+      const std::size_t ji = static_cast<std::size_t>(j) * n + i;
+      EXPECT_EQ(porous.kernel[ij], compact.kernel[ij]) << i << " " << j;
+      EXPECT_EQ(porous.kernel[ji], compact.kernel[ji]) << i << " " << j;
+      EXPECT_EQ(porous.p_frag[ij], compact.p_frag[ij]) << i << " " << j;
+      EXPECT_EQ(porous.ln_u_ratio[ij],
+                product_ln_u_ratio(m[i], 1.0, m[j], 1.0,
+                                   impact_energy(m[i], m[j], dv[ij]), e_threshold, s_c))
+          << i << " " << j;
+    }
+  }
+  const std::size_t mixed = static_cast<std::size_t>(half) * n + half - 1;
+  EXPECT_NE(porous.kernel[mixed], compact.kernel[mixed]);
 }
 
 }  // namespace
