@@ -31,20 +31,31 @@
 //! With porosity each bin also carries psi_k = sigma_k <1/phi>_m [g cm^-2], rho0 times
 //! the volume of its aggregates per unit area: the volume-averaging method of Okuzumi,
 //! Tanaka & Sakagami (2009), whose bins carry mass and the mass-weighted mean volume
-//! measure (spec §15.1). u_k = psi_k / sigma_k = <1/phi>_m of the bin. A sticking product
-//! of specific volume u_p is split into its two bins in proportion to mass, so its
-//! volume m_p u_p is booked exactly; remnants keep their parents' specific volume, and
-//! so do fragments (spec §15.3) up to the fluffiest u of the bin they land in
-//! (fragment_u_ceiling, porosity.hpp), so that fragmentation conserves psi where that
-//! ceiling does not bind and only removes volume where it does. The product's u_p comes
-//! per pair as d_ij = ln(u_p / u_i) (physics/coagulation/porosity.hpp), and a relaxation
-//! up to the static compaction floor per bin (spec §4.3-§4.4, §15.3) may be added.
+//! measure (spec §15.1). u_k = psi_k / sigma_k = <1/phi>_m of the bin.
+//! * Each partner of a collision carries its bin's own volume, psi_k in proportion to the
+//!   mass it takes away: c_ij K_ij (psi_i / m_i) n_j per unit of m_i, the rate R_ij with
+//!   n_i replaced by psi_i / m_i (the upwind booking of an extensive quantity). This is
+//!   linear in psi and finite where sigma_k = 0, so a bin's psi leaves at its mass's
+//!   fractional rate whatever its sign: the psi < 0 that integration error leaves in
+//!   nearly empty bins decays (booked as u = |psi|/sigma times the mass lost, it grew at
+//!   the bin's collision rate: tests/bench/results/porous_newton.md).
+//! * A sticking product gains its partners' volumes plus the voids of its rule, m_p u_p -
+//!   m_i u_i - m_j u_j with u_p = u_i e^d (d_ij = ln(u_p / u_i), porosity.hpp) at the
+//!   bins' u, split into its two bins in proportion to mass. Inside the physical cone
+//!   psi >= sigma >= 0 (u = psi/sigma) that is the product's volume m_p u_p.
+//! * Remnants keep their parents' specific volume, and so do fragments (spec §15.3) up to
+//!   the fluffiest u of the bin they land in (fragment_u_ceiling, porosity.hpp): psi is
+//!   conserved where that ceiling does not bind, and only removed where it does.
+//! * A relaxation up to the static compaction floor per bin (spec §4.3-§4.4, §15.3) may
+//!   be added.
+//! So psi changes only by the voids, the ceiling and the floors.
 //!
-//! A bin's u follows the state by the one rule of bin_porosity() (porosity.hpp), with the
-//! coefficients' empty-bin scale. The Jacobian is analytic and dense per cell, with K, p,
-//! d and the floors' levels and rates held fixed (they depend on the state through the
-//! filling factors and, the relaxation rates, the bins' sigma) unless their derivatives
-//! are given (cell_coefficients computes them all).
+//! A bin's u (the kernel, the product rule, the floors) follows the state by the one rule
+//! of bin_porosity() (porosity.hpp), with the coefficients' empty-bin scale. The Jacobian
+//! is analytic and dense per cell, with K, p, d and the floors' levels and rates held
+//! fixed (they depend on the state through the filling factors and, the relaxation
+//! rates, the bins' sigma) unless their derivatives are given (cell_coefficients computes
+//! them all).
 //! For the compact model it is exact. Rows and columns are ordered (sigma_0 ...
 //! sigma_{N-1}[, psi_0 ...]), row-major.
 #include <algorithm>
@@ -218,10 +229,8 @@ class Smoluchowski {
           if (p.k != i) dsigma[p.k] += p.gain_lo * r_stick;
           dsigma[p.k + 1] += p.gain_hi * r_stick;
           if (porous) {
-            // the partners carry their own volume, psi in proportion to mass: v_t and v_j
-            // per unit of their mass lost (finite at sigma = 0, linear in psi, so that a
-            // psi of either sign decays with its bin's mass); the product adds the voids
-            // of its rule, m_p u_p - m_i u_i - m_j u_j, at the bins' u (bin_porosity)
+            // the partners' own volumes m_i vt, m_j vj (header); the product adds the
+            // voids of its rule
             const double vt = f_stick * w_[i] * num_[j], vj = f_stick * num_[i] * w_[j];
             const double d = has_d ? c.ln_u_ratio[ij] : 0.0;
             const double voids = r_stick * product_voids(m[i], m[j], u_[i].u, u_[j].u, d);
