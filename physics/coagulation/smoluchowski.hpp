@@ -579,11 +579,19 @@ class Smoluchowski {
       spread_fragments(frag_psi_, out);
       return;
     }
+    for_each_fragment_sum(
+        cap, [&](int k, const CappedVolume& v) { out[k] += weight_[k] * v.value; });
+  }
+  //! f(k, capped_volume(W_k, cap_k M_k)) for each bin k, from the top bin down: the one
+  //! walk over the suffix sums W_k / w_k and M_k / w_k of the fragments' volume and mass
+  //! that spread_fragment_volume and fragment_volume_slopes share.
+  template <class F>
+  void for_each_fragment_sum(const std::vector<double>& cap, F&& f) const {
     double s_psi = 0.0, s_mass = 0.0;
     for (int k = n_ - 1; k >= 0; --k) {
       s_psi += frag_psi_[k] * inv_z_[k];
       s_mass += frag_mass_[k] * inv_z_[k];
-      out[k] += weight_[k] * capped_volume(s_psi, cap[k] * s_mass).value;
+      f(k, capped_volume(s_psi, cap[k] * s_mass));
     }
   }
   //! soft_min(w, c) for w, c > 0 with its slopes by w and by c; else w (slopes 1, 0).
@@ -602,14 +610,10 @@ class Smoluchowski {
   void fragment_volume_slopes(const std::vector<double>& cap) const {
     slope_psi_.resize(n_);
     slope_mass_.resize(n_);
-    double s_psi = 0.0, s_mass = 0.0;
-    for (int k = n_ - 1; k >= 0; --k) {
-      s_psi += frag_psi_[k] * inv_z_[k];
-      s_mass += frag_mass_[k] * inv_z_[k];
-      const CappedVolume v = capped_volume(s_psi, cap[k] * s_mass);
+    for_each_fragment_sum(cap, [&](int k, const CappedVolume& v) {
       slope_psi_[k] = weight_[k] * v.by_volume;
       slope_mass_[k] = weight_[k] * v.by_cap * cap[k];
-    }
+    });
   }
   //! The capped fragment volume's column `col` into the volume rows: the suffix sums of
   //! the column's fragment mass and volume derivatives times the slopes.
