@@ -173,12 +173,22 @@ const char* linear_solver_name(LinearSolverKind kind) {
                                            : "klu";
 }
 
+double Simulation::newton_coefficient() const {
+  const double set = cfg_.real("solver.newton_coef");
+  if (set > 0.0) return set;
+  // 0 = by model kind (keys_run.cpp): a size distribution at CVODE's own 0.1 (at 0.03
+  // most Newton iterations failed where a porous growth front sweeps the bins, 4x the
+  // steps: tests/bench/results/porous_newton.md); single-size runs at 0.03
+  // (performance_log.md).
+  return distribution_ != nullptr ? 0.1 : 0.03;
+}
+
 IntegratorOptions Simulation::integrator_options() const {
   IntegratorOptions o;
   o.rtol = cfg_.real("solver.rtol");
   o.max_steps = cfg_.integer("solver.max_steps");
   o.max_dt = cfg_.real("solver.max_dt_yr") * kYr;
-  o.newton_coef = cfg_.real("solver.newton_coef");
+  o.newton_coef = newton_coefficient();
   o.steps_per_jacobian = cfg_.integer("solver.steps_per_jacobian");
   o.linear = linear_solver();
   const auto& L = *layout_;

@@ -144,6 +144,8 @@ class Simulation {
   void check_start_is_finite() const;
   std::vector<OutputField> make_output_fields() const;
   LinearSolverKind resolve_linear_solver() const;
+  //! solver.newton_coef, its 0 resolved by the model kind.
+  double newton_coefficient() const;
   Config cfg_;
   Grid grid_;
   std::unique_ptr<GasDisk> disk_;

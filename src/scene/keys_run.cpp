@@ -60,13 +60,15 @@ std::vector<KeySpec> solver_keys() {
            "largest step of either integrator (0 = unlimited; else >= 1e-6 yr)", 0.0,
            false),
       when({bdf},
-           real("solver.newton_coef", "0.03", "",
+           real("solver.newton_coef", "0.0", "",
                 "CVODE's nonlinear convergence coefficient (CVodeSetNonlinConvCoef): "
                 "Newton stops when its correction is below this fraction of the local "
-                "error tolerance; 0.03 rather than CVODE's 0.1: less Newton error in the "
-                "local error estimate, fewer failed steps "
-                "(tests/bench/results/performance_log.md)",
-                0.0, true, 1.0, false)),
+                "error tolerance; 0 = by model.kind: 0.03 for single_size (less Newton "
+                "error in the local error estimate, fewer failed steps: "
+                "tests/bench/results/performance_log.md), CVODE's own 0.1 for "
+                "distribution (0.03 failed most Newton iterations at a porous growth "
+                "front: tests/bench/results/porous_newton.md)",
+                0.0, false, 1.0, false)),
       when(
           {bdf},
           integer(
