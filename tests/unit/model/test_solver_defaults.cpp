@@ -1,5 +1,5 @@
 // The solver keys whose default 0 the model kind resolves: solver.newton_coef is 0.03
-// for the single-size model and CVODE's own 0.1 for a size distribution (keys_run.cpp;
+// for the single-size model and 0.05 for a size distribution (keys_run.cpp;
 // tests/bench/results/porous_newton.md), and a value given in the scene is kept.
 #include <gtest/gtest.h>
 
@@ -22,8 +22,9 @@ TEST(SolverDefaults, NewtonCoefficientByModelKind) {
                 .real("solver.newton_coef"),
             0.0);
   EXPECT_EQ(newton_coef("fiducial.toml", {}), 0.03);
-  EXPECT_EQ(newton_coef("tests/distribution_small.toml", {}), 0.1);
-  EXPECT_EQ(newton_coef("tests/distribution_small.toml", {"porosity.enabled=true"}), 0.1);
+  EXPECT_EQ(newton_coef("tests/distribution_small.toml", {}), 0.05);
+  EXPECT_EQ(newton_coef("tests/distribution_small.toml", {"porosity.enabled=true"}),
+            0.05);
   EXPECT_EQ(newton_coef("tests/distribution_small.toml", {"solver.newton_coef=0.03"}),
             0.03);
   EXPECT_EQ(newton_coef("fiducial.toml", {"solver.newton_coef=0.1"}), 0.1);
