@@ -36,7 +36,9 @@ struct IntegratorOptions {
   std::vector<double> constraints;  //!< per component: 1 = y >= 0, 0 = none
   long max_steps = 2000000;         //!< total step budget of the run
   double max_dt = 0.0;              //!< largest step [s], 0 = unlimited
-  double newton_coef = 0.03;        //!< CVodeSetNonlinConvCoef (solver.newton_coef)
+  //! CVodeSetNonlinConvCoef (> 0): solver.newton_coef, whose 0 (the key's default)
+  //! Simulation::newton_coefficient resolves by the model kind
+  double newton_coef = 0.03;
   //! CVodeSetJacEvalFrequency and CVodeSetLSetupFrequency (solver.steps_per_jacobian);
   //! 0: CVODE's own (51 and 20)
   long steps_per_jacobian = 0;
