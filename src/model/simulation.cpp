@@ -155,10 +155,14 @@ LinearSolverKind Simulation::resolve_linear_solver() const {
   if (linear == "block") return LinearSolverKind::block;
   if (linear == "gmres") return LinearSolverKind::gmres;
   if (linear == "klu") return LinearSolverKind::klu;
-  // auto: a size distribution couples its 2 x bins variables per cell densely, where the
-  // block solver factorises in half KLU's time and keeps the budget to round-off
-  // (tests/bench/results/krylov_solver.md, block_solver.md); gmres is faster still but
-  // closes the budget only to the Krylov tolerance, short of issue 35's 1e-10.
+  // auto: a size distribution couples its bins (2 x bins variables when porous) densely
+  // within a cell. There the block solver factorises in half KLU's time. GMRES with the
+  // cells' blocks as preconditioner, its solutions made conservative
+  // (cvode_integrator.cpp, conservative_spgmr_solve), costs a porous distribution
+  // 0.5-0.9x the block solver's time and a compact one the same
+  // (tests/bench/results/krylov_solver.md); the compact ones keep the block solver,
+  // whose solutions are KLU's to round-off.
+  if (distribution_ != nullptr && distribution_->porous()) return LinearSolverKind::gmres;
   const StateLayout& L = *layout_;
   return distribution_ != nullptr &&
                  BlockBandedLU::refusal(model_->pattern(), L.n_cells(), L.n_cell_vars())
@@ -192,6 +196,7 @@ IntegratorOptions Simulation::integrator_options() const {
   o.newton_coef = newton_coefficient();
   o.steps_per_jacobian = cfg_.integer("solver.steps_per_jacobian");
   o.linear = linear_solver();
+  if (o.linear == LinearSolverKind::gmres) o.invariant = budget_weights();
   const auto& L = *layout_;
   const double atol = cfg_.real("solver.atol_sigma");
   o.atol.resize(L.size());
@@ -280,6 +285,17 @@ std::vector<double> Simulation::budget_masses(std::span<const double> y) const {
   std::vector<double> m;
   for (const auto& term : budget_terms_) m.push_back(term.mass(y));
   return m;
+}
+
+std::vector<double> Simulation::budget_weights() const {
+  const long n = layout_->size();
+  std::vector<double> c(static_cast<std::size_t>(n)), e(static_cast<std::size_t>(n), 0.0);
+  for (long j = 0; j < n; ++j) {
+    e[j] = 1.0;
+    for (const auto& term : budget_terms_) c[j] += term.mass(e);
+    e[j] = 0.0;
+  }
+  return c;
 }
 
 double Simulation::budget_error(std::span<const double> y) const {

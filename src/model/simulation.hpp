@@ -129,6 +129,10 @@ class Simulation {
   const std::vector<BudgetTerm>& budget_terms() const { return budget_terms_; }
   //! The mass of every budget term at state y [g].
   std::vector<double> budget_masses(std::span<const double> y) const;
+  //! The weights c of the budget's sum, c . y = sum of budget_masses(y) [g per unit of
+  //! each component]: the terms are linear in y (each books a mass), so c_j is their sum
+  //! at the unit vector e_j.
+  std::vector<double> budget_weights() const;
   //! |sum of the budget terms - initial| / initial.
   double budget_error(std::span<const double> y) const;
   //! One-paragraph summary for `panoptic check` and the run header.

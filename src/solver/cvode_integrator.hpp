@@ -44,6 +44,10 @@ struct CvodeCallbackData {
   const SparsityPattern* pattern = nullptr;
   CellBlockPreconditioner* preconditioner = nullptr;
   long n_jacobian = 0;
+  //! GMRES: the budget's weights c (IntegratorOptions::invariant; empty: GMRES's
+  //! solutions are not corrected) and the correction's scratch vectors.
+  std::span<const double> invariant;
+  std::vector<double> residual, jx;
 };
 
 //! The counters of the Krylov iteration (solver.linear = "gmres"; zero otherwise) since

@@ -43,6 +43,12 @@ struct IntegratorOptions {
   //! 0: CVODE's own (51 and 20)
   long steps_per_jacobian = 0;
   LinearSolverKind linear = LinearSolverKind::klu;
+  //! gmres: the weights c of the booked dust mass (c . y = the sum of the budget terms,
+  //! Simulation::budget_weights). A direct solve of the Newton system (I - gamma J) x = b
+  //! gives c . x = c . b exactly, since a conservative model has c . J = 0; GMRES's x is
+  //! then corrected to the same (cvode_integrator.cpp), so that the budget closes to
+  //! round-off with it too. Empty: no projection.
+  std::vector<double> invariant;
   //! implicit_euler: the step is cfl times the shortest time in which a component of
   //! the step rule would empty at its present rate (solver.cfl)
   double cfl = 0.1;
