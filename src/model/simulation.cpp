@@ -180,12 +180,15 @@ const char* linear_solver_name(LinearSolverKind kind) {
 double Simulation::newton_coefficient() const {
   const double set = cfg_.real("solver.newton_coef");
   if (set > 0.0) return set;
-  // 0 = by model kind (keys_run.cpp): a size distribution at 0.05 (at 0.03 most Newton
-  // iterations failed where a porous growth front sweeps the bins; at 0.1 the Newton
-  // error left in the error estimate failed the porous DustPy disk's error test:
-  // tests/bench/results/porous_newton.md); single-size runs at 0.03
-  // (performance_log.md).
-  return distribution_ != nullptr ? 0.05 : 0.03;
+  // 0 = by model kind (keys_run.cpp; tests/bench/results/porous_newton.md): single-size
+  // runs at 0.03 (performance_log.md); a compact size distribution at 0.05 (the compact
+  // DustPy disk to 1e5 yr: 20.8 s, against 20.0 s at 0.1 and 28.6 s at 0.03); a porous
+  // one at 0.1, where a growth front sweeps the bins: with its GMRES solves
+  // (resolve_linear_solver) 0.1 costs the porous DustPy disk to 1e3 yr 1.2x what 0.05
+  // does, while 0.05 fails Newton on most steps of the 7-per-decade porous MMSN past
+  // 1e4 yr (at 0.03 from the first centuries on).
+  if (distribution_ == nullptr) return 0.03;
+  return distribution_->porous() ? 0.1 : 0.05;
 }
 
 IntegratorOptions Simulation::integrator_options() const {
