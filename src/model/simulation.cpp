@@ -159,9 +159,10 @@ LinearSolverKind Simulation::resolve_linear_solver() const {
   // within a cell. There the block solver factorises in half KLU's time. GMRES with the
   // cells' blocks as preconditioner, its solutions made conservative
   // (cvode_integrator.cpp, conservative_spgmr_solve), costs a porous distribution
-  // 0.5-0.9x the block solver's time and a compact one the same
-  // (tests/bench/results/krylov_solver.md); the compact ones keep the block solver,
-  // whose solutions are KLU's to round-off.
+  // 0.5-0.8x the block solver's time and a compact one 0.85x
+  // (tests/bench/results/krylov_solver.md). The compact ones keep the block solver,
+  // whose solutions are KLU's to round-off and with which the DustPy comparison was
+  // measured.
   if (distribution_ != nullptr && distribution_->porous()) return LinearSolverKind::gmres;
   const StateLayout& L = *layout_;
   return distribution_ != nullptr &&
@@ -183,10 +184,10 @@ double Simulation::newton_coefficient() const {
   // 0 = by model kind (keys_run.cpp; tests/bench/results/porous_newton.md): single-size
   // runs at 0.03 (performance_log.md); a compact size distribution at 0.05 (the compact
   // DustPy disk to 1e5 yr: 20.8 s, against 20.0 s at 0.1 and 28.6 s at 0.03); a porous
-  // one at 0.1, where a growth front sweeps the bins: with its GMRES solves
-  // (resolve_linear_solver) 0.1 costs the porous DustPy disk to 1e3 yr 1.2x what 0.05
-  // does, while 0.05 fails Newton on most steps of the 7-per-decade porous MMSN past
-  // 1e4 yr (at 0.03 from the first centuries on).
+  // one at 0.1, where a growth front sweeps the bins: 0.05 fails Newton on most steps of
+  // the 7-per-decade porous MMSN past 1e4 yr (0.03 from the first centuries on), 4.6x its
+  // cost at 0.1 or more, while 0.1 costs the fragmenting porous DustPy disk 1.8x what
+  // 0.05 does to 1e4 yr (with GMRES, resolve_linear_solver): the smaller worst case.
   if (distribution_ == nullptr) return 0.03;
   return distribution_->porous() ? 0.1 : 0.05;
 }

@@ -67,8 +67,8 @@ std::vector<KeySpec> solver_keys() {
                 "error in the local error estimate, fewer failed steps: "
                 "tests/bench/results/performance_log.md), 0.05 for a compact "
                 "distribution, 0.1 for a porous one (0.03 and 0.05 failed most Newton "
-                "iterations at a porous growth front: tests/bench/results/"
-                "porous_newton.md)",
+                "iterations at a porous growth front; 0.05 is faster on a fragmenting "
+                "porous disk: tests/bench/results/porous_newton.md)",
                 0.0, false, 1.0, false)),
       when(
           {bdf},
@@ -95,8 +95,8 @@ std::vector<KeySpec> solver_keys() {
                   "CVODE's SPGMR with products from the assembled Jacobian, "
                   "right-preconditioned by the LU of each cell's dense block "
                   "(src/solver/cell_block_preconditioner.hpp), each solution corrected "
-                  "to keep the mass budget to round-off: 0.5-0.9x the block solver's "
-                  "time on porous size distributions, the same on compact ones, slow on "
+                  "to keep the mass budget to round-off: 0.5-0.8x the block solver's "
+                  "time on porous size distributions, 0.85x on compact ones, slow on "
                   "single-size runs (tests/bench/results/krylov_solver.md)")),
       flag("solver.reinit_at_snapshots", "true",
            "reinitialise CVODE at every snapshot time, so that a run restarted from a "

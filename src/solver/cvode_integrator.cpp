@@ -101,7 +101,7 @@ extern "C" int conservative_spgmr_solve(SUNLinearSolver S, SUNMatrix A, N_Vector
   const std::size_t n = c.size();
   const std::span<const double> bv = as_span(b);
   std::vector<double>& r = d->residual;
-  r.assign(bv.begin(), bv.end());  // SPGMR may overwrite b
+  r.assign(bv.begin(), bv.end());  // b, kept before SPGMR runs
   const int flag = SUNLinSolSolve_SPGMR(S, A, x, b, tol);
   if (flag != SUNLS_SUCCESS && flag != SUNLS_RES_REDUCED) return flag;
   const std::span<double> xv = as_mut_span(x);

@@ -47,7 +47,7 @@ struct IntegratorOptions {
   //! Simulation::budget_weights). A direct solve of the Newton system (I - gamma J) x = b
   //! gives c . x = c . b exactly, since a conservative model has c . J = 0; GMRES's x is
   //! then corrected to the same (cvode_integrator.cpp), so that the budget closes to
-  //! round-off with it too. Empty: no projection.
+  //! round-off with it too. Empty: not corrected.
   std::vector<double> invariant;
   //! implicit_euler: the step is cfl times the shortest time in which a component of
   //! the step rule would empty at its present rate (solver.cfl)
