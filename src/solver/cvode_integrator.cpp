@@ -125,7 +125,8 @@ extern "C" int conservative_spgmr_solve(SUNLinearSolver S, SUNMatrix A, N_Vector
   return flag;
 }
 
-// Sets the set-up and solve of `ls` (KLU's or the block solver's), timed or not.
+// Sets the set-up and solve of `ls` (KLU's, the block solver's or GMRES's, whose solve
+// is conservative_spgmr_solve), timed or not.
 void set_solver_ops(void* ls, LinearSolverKind kind, bool timed) {
   auto* ops = static_cast<SUNLinearSolver>(ls)->ops;
   if (kind == LinearSolverKind::block) {

@@ -231,15 +231,16 @@ TEST(KrylovSolver, CorrectedSolutionsCloseTheBudgetToRoundOff) {
   Simulation sim(load_scene(
       small_scene(),
       std::vector<std::string>{"solver.linear=\"gmres\"", "output.t_end_yr=300"}));
-  IntegratorOptions opt = sim.integrator_options();
-  ASSERT_EQ(opt.invariant.size(), sim.initial_state().size());
+  const IntegratorOptions corrected = sim.integrator_options();
+  ASSERT_EQ(corrected.invariant.size(), sim.initial_state().size());
+  IntegratorOptions uncorrected = corrected;
+  uncorrected.invariant.clear();
   double error[2];
-  for (int corrected = 0; corrected < 2; ++corrected) {
-    if (corrected == 0) opt.invariant.clear();
-    if (corrected == 1) opt = sim.integrator_options();
-    CvodeIntegrator cvode(sim.model(), 0.0, sim.initial_state(), opt);
+  for (int k = 0; k < 2; ++k) {
+    CvodeIntegrator cvode(sim.model(), 0.0, sim.initial_state(),
+                          k == 0 ? uncorrected : corrected);
     cvode.advance_to(300.0 * units::kYr);
-    error[corrected] = sim.budget_error(cvode.state());
+    error[k] = sim.budget_error(cvode.state());
   }
   std::printf("budget error to 300 yr: %.2e uncorrected, %.2e corrected\n", error[0],
               error[1]);
