@@ -447,11 +447,7 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
     engine_.jacobian(coef_[i], y.subspan(base, nb),
                      porous_ ? y.subspan(base + nb, nb) : std::span<const double>{},
                      scratch_);
-    for (int r = 0; r < nv; ++r)
-      for (int c = 0; c < nv; ++c) {
-        const double v = scratch_[static_cast<std::size_t>(r) * nv + c];
-        if (v != 0.0) jac.add(base + r, base + c, v);
-      }
+    jac.add_dense_block(base, nv, scratch_);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace panoptic {
 namespace {
@@ -25,7 +26,7 @@ SparsityPattern cell_block_pattern(const SparsityPattern& pattern, int n_cells, 
     for (auto p = col_ptr[col]; p < col_ptr[col + 1]; ++p)
       if (rows[p] >= first && rows[p] < first + b) builder.add(rows[p], col);
   }
-  return SparsityPattern(builder);
+  return SparsityPattern(std::move(builder));
 }
 
 }  // namespace

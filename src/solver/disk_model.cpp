@@ -5,6 +5,7 @@
 #include <exception>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace panoptic {
 namespace {
@@ -14,7 +15,7 @@ SparsityPattern build_pattern(
     const std::vector<std::unique_ptr<PhysicsModule>>& modules) {
   PatternBuilder builder(layout.size());
   for (const auto& m : modules) m->declare_pattern(builder);
-  return SparsityPattern(builder);
+  return SparsityPattern(std::move(builder));
 }
 
 //! Index of the first non-finite entry, or -1.

@@ -1,19 +1,47 @@
 #include "src/solver/sparsity.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
 namespace panoptic {
 
-SparsityPattern::SparsityPattern(const PatternBuilder& builder) : n_(builder.size()) {
-  std::set<std::pair<long, long>> entries = builder.entries_;
-  for (long i = 0; i < n_; ++i) entries.emplace(i, i);  // full diagonal
+void PatternBuilder::compact() {
+  const auto n = static_cast<std::size_t>(n_);
+  std::vector<std::size_t> start(n + 1, 0);
+  for (const auto& e : entries_) ++start[static_cast<std::size_t>(e.first) + 1];
+  for (std::size_t c = 0; c < n; ++c) start[c + 1] += start[c];
+  std::vector<long> rows(entries_.size());
+  {
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (const auto& [col, row] : entries_)
+      rows[next[static_cast<std::size_t>(col)]++] = row;
+  }
+  entries_.clear();
+  for (std::size_t c = 0; c < n; ++c) {
+    const auto first = rows.begin() + static_cast<std::ptrdiff_t>(start[c]);
+    const auto last = rows.begin() + static_cast<std::ptrdiff_t>(start[c + 1]);
+    std::sort(first, last);
+    const auto end = std::unique(first, last);
+    for (auto it = first; it != end; ++it)
+      entries_.emplace_back(static_cast<long>(c), *it);
+  }
+  unique_ = entries_.size();
+}
+
+void PatternBuilder::throw_outside(long row, long col) const {
+  throw std::logic_error("PatternBuilder: entry (" + std::to_string(row) + ", " +
+                         std::to_string(col) + ") is outside the " + std::to_string(n_) +
+                         " x " + std::to_string(n_) + " matrix");
+}
+
+SparsityPattern::SparsityPattern(PatternBuilder&& builder) : n_(builder.size()) {
+  for (long i = 0; i < n_; ++i) builder.entries_.emplace_back(i, i);  // full diagonal
+  builder.compact();
   col_ptr_.assign(n_ + 1, 0);
-  row_index_.reserve(entries.size());
-  for (const auto& [col, row] : entries) {
-    if (row < 0 || row >= n_ || col < 0 || col >= n_)
-      throw std::logic_error("SparsityPattern: entry outside the matrix");
+  row_index_.reserve(builder.entries_.size());
+  for (const auto& [col, row] : builder.entries_) {  // in the matrix: add() checked
     ++col_ptr_[col + 1];
     row_index_.push_back(row);
   }
@@ -78,6 +106,27 @@ void JacobianValues::add(long row, long col, double v) {
   const long p = pattern_.position(row, col);
   if (p < 0) throw PatternMiss(row, col);
   values_[p] += v;
+}
+
+void JacobianValues::add_dense_block(long first, int n, std::span<const double> block) {
+  const auto rows = pattern_.row_index();
+  const auto un = static_cast<std::size_t>(n);
+  for (int c = 0; c < n; ++c) {
+    const long col = first + c;
+    const long p0 = pattern_.position(first, col);
+    // rows are sorted and unique in a column: its n rows are there when the last is
+    const bool whole = p0 >= 0 && p0 + n - 1 < static_cast<long>(rows.size()) &&
+                       rows[static_cast<std::size_t>(p0 + n - 1)] == first + n - 1;
+    for (int r = 0; r < n; ++r) {
+      const double v =
+          block[static_cast<std::size_t>(r) * un + static_cast<std::size_t>(c)];
+      if (v == 0.0) continue;
+      if (whole)
+        values_[static_cast<std::size_t>(p0 + r)] += v;
+      else
+        add(first + r, col, v);
+    }
+  }
 }
 
 }  // namespace panoptic

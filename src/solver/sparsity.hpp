@@ -5,7 +5,6 @@
 //! SUNSparseMatrix.
 #include <sundials/sundials_types.h>
 
-#include <set>
 #include <span>
 #include <stdexcept>
 #include <utility>
@@ -13,22 +12,40 @@
 
 namespace panoptic {
 
+//! Collects the declared entries. A flat list, sorted and deduplicated once the
+//! duplicates could outgrow what is kept, and at the end: a tree of the 5.9 million
+//! entries of the porous DustPy disk took half of the run's set-up and 3x the memory
+//! (tests/bench/results/porous_cost.md, set-up section).
 class PatternBuilder {
  public:
   explicit PatternBuilder(long n) : n_(n) {}
-  void add(long row, long col) { entries_.emplace(col, row); }
+  //! Throws std::logic_error for an entry outside the n x n matrix (a programming error
+  //! of the module that declares it).
+  void add(long row, long col) {
+    if (row < 0 || row >= n_ || col < 0 || col >= n_) throw_outside(row, col);
+    entries_.emplace_back(col, row);
+    if (entries_.size() >= 2 * unique_ + 1024) compact();
+  }
   long size() const { return n_; }
 
  private:
   friend class SparsityPattern;
+  //! Sorts column-major ((col, row) pairs) and drops repeated entries: a counting sort
+  //! by column, then each column's rows (O(entries); a comparison sort of the whole list
+  //! took most of the set-up left).
+  void compact();
+  [[noreturn]] void throw_outside(long row, long col) const;
   long n_;
-  std::set<std::pair<long, long>> entries_;  // (col, row): sorted column-major
+  std::vector<std::pair<long, long>> entries_;  // (col, row)
+  std::size_t unique_ = 0;  // entries_'s size after the last compact()
 };
 
 class SparsityPattern {
  public:
   SparsityPattern() = default;
-  explicit SparsityPattern(const PatternBuilder& builder);
+  explicit SparsityPattern(PatternBuilder&& builder);
+  explicit SparsityPattern(const PatternBuilder& builder)
+      : SparsityPattern(PatternBuilder(builder)) {}
 
   long size() const { return n_; }
   long nnz() const { return static_cast<long>(row_index_.size()); }
@@ -75,6 +92,11 @@ class JacobianValues {
       : pattern_(pattern), values_(values) {}
   //! J(row, col) += v. The entry must have been declared; a miss is a programming error.
   void add(long row, long col, double v);
+  //! J(first + r, first + c) += block[r n + c] for each non-zero entry of the dense,
+  //! row-major n x n `block`: add() entry by entry, with one search per column instead of
+  //! one per entry where the pattern holds the column's n rows (a coagulation cell's
+  //! 240 x 240 block is 57 600 searches otherwise).
+  void add_dense_block(long first, int n, std::span<const double> block);
   const SparsityPattern& pattern() const { return pattern_; }
 
  private:

@@ -1,9 +1,14 @@
-// The Jacobian's pattern (src/solver/sparsity.hpp): where its diagonal sits, and the
-// Newton matrix I - c J that both integrators and the GMRES preconditioner factorise,
+// The Jacobian's pattern (src/solver/sparsity.hpp): built from repeated, unordered
+// entries; where its diagonal sits; dense blocks added as entry by entry; and the Newton
+// matrix I - c J that both integrators and the GMRES preconditioner factorise,
 // against the same matrix written out by hand.
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "src/solver/sparsity.hpp"
@@ -58,6 +63,72 @@ TEST(Sparsity, NewtonMatrixIsIdentityMinusCTimesJ) {
   pattern.multiply(m, x, mx);
   pattern.multiply(jacobian, x, jx);
   for (std::size_t i = 0; i < 4; ++i) EXPECT_DOUBLE_EQ(mx[i], x[i] - c * jx[i]) << i;
+}
+
+TEST(Sparsity, RepeatedAndUnorderedEntriesGiveTheSortedUniquePattern) {
+  // enough repeats to compact the builder's list many times over
+  const long n = 60;
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<long> index(0, n - 1);
+  PatternBuilder builder(n);
+  std::set<std::pair<long, long>> reference;  // (col, row)
+  for (int k = 0; k < 20000; ++k) {
+    const long row = index(rng), col = index(rng) / 4;  // columns 0-14 only: repeats
+    builder.add(row, col);
+    reference.emplace(col, row);
+  }
+  for (long i = 0; i < n; ++i) reference.emplace(i, i);
+  EXPECT_THROW(builder.add(n, 0), std::logic_error);
+  EXPECT_THROW(builder.add(0, -1), std::logic_error);
+  const SparsityPattern pattern(builder);
+  ASSERT_EQ(pattern.nnz(), static_cast<long>(reference.size()));
+  std::vector<long> col_count(n + 1, 0);
+  long p = 0;
+  for (const auto& [col, row] : reference) {
+    EXPECT_EQ(pattern.row_index()[static_cast<std::size_t>(p)], row) << p;
+    EXPECT_EQ(pattern.position(row, col), p);
+    ++col_count[static_cast<std::size_t>(col) + 1];
+    ++p;
+  }
+  for (long c = 0; c < n; ++c) {
+    col_count[static_cast<std::size_t>(c) + 1] += col_count[static_cast<std::size_t>(c)];
+    EXPECT_EQ(pattern.col_ptr()[static_cast<std::size_t>(c) + 1],
+              col_count[static_cast<std::size_t>(c) + 1]);
+  }
+}
+
+TEST(Sparsity, DenseBlockAddsWhatAddGivesEntryByEntry) {
+  // two 3 x 3 blocks on the diagonal of a 7 x 7 matrix: the first whole, the second
+  // without (5, 4); an off-block entry (6, 1) in the first block's column
+  PatternBuilder builder(7);
+  for (long r = 0; r < 3; ++r)
+    for (long c = 0; c < 3; ++c) builder.add(r, c);
+  for (long r = 3; r < 6; ++r)
+    for (long c = 3; c < 6; ++c)
+      if (!(r == 5 && c == 4)) builder.add(r, c);
+  builder.add(6, 1);
+  const SparsityPattern pattern(builder);
+  const std::vector<double> block{1.5, 0.0, -2.0, 4.0, 0.25, 8.0, -1.0, 3.0, 0.5};
+  std::vector<double> by_entry(static_cast<std::size_t>(pattern.nnz()), 1.0);
+  std::vector<double> by_block = by_entry;
+  JacobianValues entry(pattern, by_entry), whole(pattern, by_block);
+  for (long r = 0; r < 3; ++r)
+    for (long c = 0; c < 3; ++c)
+      if (block[static_cast<std::size_t>(r * 3 + c)] != 0.0)
+        entry.add(r, c, block[static_cast<std::size_t>(r * 3 + c)]);
+  whole.add_dense_block(0, 3, block);
+  EXPECT_EQ(by_block, by_entry);
+
+  // the second block: its hole is skipped when the block holds 0 there, a miss otherwise
+  std::vector<double> holed = block;
+  holed[2 * 3 + 1] = 0.0;  // (5, 4)
+  for (long r = 0; r < 3; ++r)
+    for (long c = 0; c < 3; ++c)
+      if (holed[static_cast<std::size_t>(r * 3 + c)] != 0.0)
+        entry.add(3 + r, 3 + c, holed[static_cast<std::size_t>(r * 3 + c)]);
+  whole.add_dense_block(3, 3, holed);
+  EXPECT_EQ(by_block, by_entry);
+  EXPECT_THROW(whole.add_dense_block(3, 3, block), PatternMiss);
 }
 
 }  // namespace
