@@ -110,13 +110,16 @@ void JacobianValues::add(long row, long col, double v) {
 
 void JacobianValues::add_dense_block(long first, int n, std::span<const double> block) {
   const auto rows = pattern_.row_index();
+  const auto col_ptr = pattern_.col_ptr();
   const auto un = static_cast<std::size_t>(n);
   for (int c = 0; c < n; ++c) {
     const long col = first + c;
     const long p0 = pattern_.position(first, col);
-    // rows are sorted and unique in a column: its n rows are there when the last is
-    const bool whole = p0 >= 0 && p0 + n - 1 < static_cast<long>(rows.size()) &&
-                       rows[static_cast<std::size_t>(p0 + n - 1)] == first + n - 1;
+    // rows are sorted and unique in a column: its n rows are there when the last is, in
+    // the same column
+    const long last = p0 + n - 1;
+    const bool whole = p0 >= 0 && last < col_ptr[static_cast<std::size_t>(col) + 1] &&
+                       rows[static_cast<std::size_t>(last)] == first + n - 1;
     for (int r = 0; r < n; ++r) {
       const double v =
           block[static_cast<std::size_t>(r) * un + static_cast<std::size_t>(c)];

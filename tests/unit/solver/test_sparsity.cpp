@@ -4,6 +4,7 @@
 // against the same matrix written out by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <random>
 #include <set>
@@ -129,6 +130,28 @@ TEST(Sparsity, DenseBlockAddsWhatAddGivesEntryByEntry) {
   whole.add_dense_block(3, 3, holed);
   EXPECT_EQ(by_block, by_entry);
   EXPECT_THROW(whole.add_dense_block(3, 3, block), PatternMiss);
+}
+
+TEST(Sparsity, DenseBlockDoesNotReadTheNextColumnsRowsAsItsOwn) {
+  // column 1 lacks (2, 1), and column 2 holds only its diagonal (2, 2): the position
+  // n - 1 entries after (0, 1) is column 2's row 2, the row the block's last would have
+  PatternBuilder builder(3);
+  builder.add(1, 0);
+  builder.add(2, 0);
+  builder.add(0, 1);
+  const SparsityPattern pattern(builder);
+  ASSERT_EQ(pattern.nnz(), 6);
+  std::vector<double> values(6, 0.0);
+  JacobianValues jac(pattern, values);
+  const std::vector<double> block{1.0, 2.0, 0.0, 3.0, 4.0,
+                                  0.0, 5.0, 7.0, 6.0};  // (2,1)=7
+  EXPECT_THROW(jac.add_dense_block(0, 3, block), PatternMiss);
+  // without (2, 1): column 1 gets (0, 1) and (1, 1), column 2 only its diagonal
+  std::vector<double> fitting = block;
+  fitting[2 * 3 + 1] = 0.0;
+  std::fill(values.begin(), values.end(), 0.0);
+  jac.add_dense_block(0, 3, fitting);
+  EXPECT_EQ(values, (std::vector<double>{1.0, 3.0, 5.0, 2.0, 4.0, 6.0}));
 }
 
 }  // namespace
