@@ -13,9 +13,9 @@
 namespace panoptic {
 
 //! Collects the declared entries. A flat list, sorted and deduplicated once the
-//! duplicates could outgrow what is kept, and at the end: a tree of the 5.9 million
-//! entries of the porous DustPy disk took half of the run's set-up and 3x the memory
-//! (tests/bench/results/porous_cost.md, set-up section).
+//! duplicates could outgrow what is kept, and at the end: a tree (std::set) of the 5.9
+//! million entries of the porous DustPy disk took 70 % of its set-up's CPU and 430 MB of
+//! its 1 GB peak memory (tests/bench/results/porous_cost.md, set-up section).
 class PatternBuilder {
  public:
   explicit PatternBuilder(long n) : n_(n) {}
