@@ -510,6 +510,24 @@ std::vector<OutputField> SizeDistribution::output_fields() const {
        per_cell([this](int i, std::span<const double> y) {
          return engine_.grid().m[dominant_bin(i, y)];
        })},
+      // <m> = sum_k sigma_k m_k / sum_k sigma_k = M2/M1 of the number distribution. For a
+      // narrow distribution d<m>/dt = rho_d K (d M2/dt = sum_ij K n_i n_j m_i m_j), the
+      // single-size model's growth law (spec §4.1): what its m is compared with. The
+      // mass-dominating bin is not, where the distribution splits into a bulk and a
+      // runaway tail (tests/bench/results/porous_mmsn.md, last section).
+      {"m_mean", cells, "g",
+       "mass-weighted mean mass sum_k sigma_k m_k / sum_k sigma_k (the single-size "
+       "model's m is this moment; 0 in a cell without dust)",
+       per_cell([this](int i, std::span<const double> y) {
+         const double* s = &y[layout_.index(i, slot0_)];
+         const std::vector<double>& m = engine_.grid().m;
+         double sum = 0.0, sum_m = 0.0;
+         for (int k = 0; k < n_bins_; ++k) {
+           sum += s[k];
+           sum_m += s[k] * m[k];
+         }
+         return sum > 0.0 ? sum_m / sum : 0.0;
+       })},
       {"a", cells, "cm", "radius of the mass-dominating bin (DustPy's a_rep)",
        per_cell([this](int i, std::span<const double> y) {
          const int k = dominant_bin(i, y);

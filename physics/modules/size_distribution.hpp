@@ -163,8 +163,9 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   std::string_view name() const override { return "size_distribution"; }
   //! m_out_inner and m_sublimated (0 without a snow line) [g].
   std::vector<BudgetTerm> budget_terms() const override;
-  //! sigma (r, m), sigma_d, the mass-dominating bin's m and a, mdot_d, St (r, m)
-  //! (st_bins); porous: phi (r, m), the mass-dominating bin's phi and rho_int.
+  //! sigma (r, m), sigma_d, the mass-dominating bin's m and a, the mass-weighted mean
+  //! mass m_mean, mdot_d, St (r, m) (st_bins); porous: phi (r, m), the mass-dominating
+  //! bin's phi and rho_int.
   std::vector<OutputField> output_fields() const override;
   //! Transport: the face flows of every bin; coagulation: the dense block of every cell.
   void declare_pattern(PatternBuilder& pattern) const override;

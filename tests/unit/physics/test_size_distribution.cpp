@@ -1,7 +1,8 @@
 // The size-distribution mode on the grid (spec §15; physics/modules/size_distribution.*):
 // its Jacobian against finite differences on the whole grid, the mass budget (rates and
 // a run), one bin without coagulation against the single-size transport of the same St,
-// and the scene combinations it refuses.
+// the mass-weighted mean mass beside the mass-dominating bin, and the scene combinations
+// it refuses.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -176,6 +177,38 @@ TEST(SizeDistribution, OneBinWithoutGrowthIsTheSingleSizeTransport) {
 // take the ice's density so that the bin's St is the prescribed power law across it.
 TEST(SizeDistribution, OneBinAtTheSnowLineIsTheSingleSizeTransport) {
   expect_one_bin_is_single_size({"snowline.enabled=true", "material.sil_rho0=1.67"});
+}
+
+// A bulk and a tail (porous_mmsn.md, last section): the snapshots' m is the bin holding
+// the most mass, m_mean the mass-weighted mean sum sigma_k m_k / sum sigma_k.
+TEST(SizeDistribution, MeanMassIsTheMassWeightedMeanOfTheBins) {
+  const Simulation sim(small_scene());
+  const auto* d = sim.distribution();
+  const auto& L = sim.model().layout();
+  const std::vector<double>& m = d->engine().grid().m;
+  const int bulk = 10, tail = 40, cell = 3;
+  auto y = sim.initial_state();
+  for (int i = 0; i < sim.grid().n_cells(); ++i)
+    for (int j = 0; j < d->cell_vars(); ++j) y[L.index(i, d->bin_slot(0) + j)] = 0.0;
+  y[L.index(cell, d->bin_slot(bulk))] = 0.7;
+  y[L.index(cell, d->bin_slot(tail))] = 0.2;
+  const OutputField* mean = nullptr;
+  const OutputField* dominant = nullptr;
+  const auto fields = d->output_fields();
+  for (const OutputField& f : fields) {
+    if (f.name == "m_mean") mean = &f;
+    if (f.name == "m") dominant = &f;
+  }
+  ASSERT_NE(mean, nullptr);
+  ASSERT_NE(dominant, nullptr);
+  EXPECT_EQ(mean->units, "g");
+  const std::vector<double> got = mean->fill(y);
+  ASSERT_EQ(got.size(), static_cast<std::size_t>(sim.grid().n_cells()));
+  const double want = (0.7 * m[bulk] + 0.2 * m[tail]) / 0.9;
+  EXPECT_NEAR(got[cell], want, 1e-14 * want);
+  EXPECT_GT(got[cell], 1e7 * m[bulk]);  // the tail's moment, far above the bulk's bin
+  EXPECT_EQ(dominant->fill(y)[cell], m[bulk]);
+  EXPECT_EQ(got[cell + 1], 0.0);  // a cell without dust
 }
 
 TEST(SizeDistribution, RefusesWhatItDoesNotCarryYet) {
