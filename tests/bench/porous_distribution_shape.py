@@ -9,16 +9,9 @@ A single-size run prints its particle's m, St and phi.
 Usage: porous_distribution_shape.py [--cell I] [--every N] RUN.h5 [RUN2.h5 ...]."""
 import argparse
 
-import h5py
 import numpy as np
 
-
-def open_run(path):
-    """The file, readable while its run still writes it (SWMR)."""
-    try:
-        return h5py.File(path, "r", swmr=True, libver="latest")
-    except OSError:
-        return h5py.File(path, "r")
+from porous_growth_times import open_run
 
 
 def spread(w, x):
