@@ -514,7 +514,8 @@ std::vector<OutputField> SizeDistribution::output_fields() const {
       // narrow distribution d<m>/dt = rho_d K (d M2/dt = sum_ij K n_i n_j m_i m_j), the
       // single-size model's growth law (spec §4.1): what its m is compared with. The
       // mass-dominating bin is not, where the distribution splits into a bulk and a
-      // runaway tail (tests/bench/results/porous_mmsn.md, last section).
+      // runaway tail (tests/bench/results/porous_mmsn.md, "Why the distribution grows
+      // unlike the single size").
       {"m_mean", cells, "g",
        "mass-weighted mean mass sum_k sigma_k m_k / sum_k sigma_k (the single-size "
        "model's m is this moment; 0 in a cell without dust)",
