@@ -179,8 +179,9 @@ TEST(SizeDistribution, OneBinAtTheSnowLineIsTheSingleSizeTransport) {
   expect_one_bin_is_single_size({"snowline.enabled=true", "material.sil_rho0=1.67"});
 }
 
-// A bulk and a tail (porous_mmsn.md, last section): the snapshots' m is the bin holding
-// the most mass, m_mean the mass-weighted mean sum sigma_k m_k / sum sigma_k.
+// A bulk and a tail (tests/bench/results/porous_mmsn.md, "Why the distribution grows
+// unlike the single size"): the snapshots' m is the bin holding the most mass, m_mean
+// the mass-weighted mean sum sigma_k m_k / sum sigma_k.
 TEST(SizeDistribution, MeanMassIsTheMassWeightedMeanOfTheBins) {
   const Simulation sim(small_scene());
   const auto* d = sim.distribution();
