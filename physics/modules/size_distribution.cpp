@@ -520,14 +520,13 @@ std::vector<OutputField> SizeDistribution::output_fields() const {
        "mass-weighted mean mass sum_k sigma_k m_k / sum_k sigma_k (the single-size "
        "model's m is this moment; 0 in a cell without dust)",
        per_cell([this](int i, std::span<const double> y) {
+         const double sum = sigma_d(i, y);
+         if (!(sum > 0.0)) return 0.0;
          const double* s = &y[layout_.index(i, slot0_)];
          const std::vector<double>& m = engine_.grid().m;
-         double sum = 0.0, sum_m = 0.0;
-         for (int k = 0; k < n_bins_; ++k) {
-           sum += s[k];
-           sum_m += s[k] * m[k];
-         }
-         return sum > 0.0 ? sum_m / sum : 0.0;
+         double sum_m = 0.0;
+         for (int k = 0; k < n_bins_; ++k) sum_m += s[k] * m[k];
+         return sum_m / sum;
        })},
       {"a", cells, "cm", "radius of the mass-dominating bin (DustPy's a_rep)",
        per_cell([this](int i, std::span<const double> y) {
