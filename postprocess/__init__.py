@@ -8,6 +8,7 @@ in the repository, from its root, the same modules are ``import postprocess``.
     df = panoptic.load_scan("out/scan")                # one row per run (pandas)
     run = panoptic.run("params/fiducial.toml", set={"disk.alpha": 1e-3}, out="a.h5")
     panoptic.overlay_profiles([run_a, run_b], "sigma_d", t_yr=1e5)
+    profiles, outcomes = panoptic.compare_runs("single.h5", "distribution.h5")
 
 Modules:
     reader    -- load_run(path) -> Run, open_output(path) (a killed run's file too)
@@ -15,6 +16,9 @@ Modules:
     launch    -- run(scene, set=..., out=..., exe=...) -> Run (the panoptic executable)
     observation -- load_observation(OBS.h5) -> Observation
     overlay   -- figures of several runs: profiles at a time, outcomes vs time
+    model_error -- compare_runs(run, reference) -> (profiles, outcomes) DataFrames: a
+                 run of a scene against a reference run of it (single size against
+                 size distribution), cell by cell; panoptic-model-error
     style     -- figure sizes (column widths), save with or without the footer
     analytic  -- closed-form solutions used by the regression tests
     plot, plot_run, plot_scan, plot_observe, plot_distribution -- the figures and their
@@ -33,14 +37,15 @@ _EXPORTS = {"Run": "reader", "load_run": "reader", "open_output": "reader",
             "load_scan": "scan", "load_summary": "scan",
             "run": "launch", "PanopticError": "launch", "find_executable": "launch",
             "Observation": "observation", "load_observation": "observation",
-            "overlay_profiles": "overlay", "overlay_series": "overlay"}
+            "overlay_profiles": "overlay", "overlay_series": "overlay",
+            "compare_runs": "model_error"}
 __version__ = "0.1.0"
 __all__ = [*_EXPORTS, "__version__"]
 
 
 _SUBMODULES = ("reader", "scan", "launch", "observation", "overlay", "style", "plot",
                "plot_run", "plot_scan", "plot_observe", "plot_distribution", "analytic",
-               "xarray_view")
+               "xarray_view", "model_error")
 
 
 def __getattr__(name):

@@ -7,8 +7,8 @@ Makes a venv with --system-site-packages (numpy, h5py, matplotlib, pandas from D
 HEAD` (nothing from PyPI), then, in a directory outside the repository and with the
 venv's python: import panoptic (from the venv, not the checkout), panoptic.run of a tiny
 scene, load_run, a 2-run scan with `panoptic scan` read by load_scan as a DataFrame, a
-two-run overlay figure saved as PDF, and the console scripts panoptic-plot (PDF) and
-panoptic-plot-scan --log (SVG).
+two-run overlay figure saved as PDF, and the console scripts panoptic-plot (PDF),
+panoptic-plot-scan --log (SVG) and panoptic-model-error.
 
     PYTHONPATH=.:tests/regression /usr/bin/python3 tests/python/test_install.py \
         --exe build/panoptic --workdir DIR
@@ -144,6 +144,10 @@ def main():
             f"{out.strip().splitlines()[-1] if out.strip() else ''}")
     c.check(os.access(os.path.join(venv, "bin", "panoptic-plot-observe"), os.X_OK),
             "panoptic-plot-observe is installed")
+    rc, out = sh([os.path.join(venv, "bin", "panoptic-model-error"), os.path.join(user, "b.h5"),
+                  os.path.join(user, "a.h5")], cwd=user, env=env)
+    c.check(rc == 0 and "sigma_d_l1" in out and "disk.alpha" in out,
+            "panoptic-model-error b.h5 a.h5: the tables, and the alpha difference warned about")
     wall = time.time() - start
     print(f"wall time {wall:.1f} s")
     c.check(wall < 120, f"the whole install test took {wall:.0f} s")

@@ -22,7 +22,8 @@ import numpy as np
 # the repository root, for `postprocess` when run without PYTHONPATH
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
-from postprocess import analytic, plot, plot_distribution, plot_run, plot_scan, reader  # noqa: E402
+from postprocess import (analytic, model_error, plot, plot_distribution, plot_run,  # noqa: E402
+                         plot_scan, reader)
 
 AU = 1.496e13    # [cm]
 YR = 3.156e7     # [s]
@@ -959,6 +960,66 @@ def check_distribution_panel(tmp):
     return f"sigma {s.shape}, sums equal sigma_d, map and curves equal the data"
 
 
+def check_model_error(tmp):
+    """compare_runs of a run against itself is exactly nothing; against a copy with one
+    cell's Sigma_d x 1.25 and St x 2, m_out_inner + 1 % of the initial dust and another
+    [model], it gives those numbers and no scene warning; a copy with another disk.alpha
+    is warned about by key; other grids are refused, by the command line too (status 1)."""
+    path = os.path.join(tmp, "model_error_ref.h5")
+    ref, _ = write_full_run(path)
+    profiles, outcomes = model_error.compare_runs(path, path)
+    values = profiles.drop(columns=["t_yr", "dusty_cells"]).to_numpy()
+    ratios = [c for c in profiles.columns if c.endswith(("_median", "_worst"))]
+    assert np.all(profiles[ratios].to_numpy() == 1.0), "self ratios"
+    others = profiles.drop(columns=["t_yr", "dusty_cells", *ratios]).to_numpy()
+    assert values.size and np.all(others == 0.0), "self differences"
+    assert np.all(outcomes["difference"] == 0.0) and len(outcomes) >= 8, outcomes
+    # the perturbed copy: cell k is the dustiest one at the two times compared
+    chosen = [ref["time"][20], ref["time"][-1]]
+    k = int(np.argmax(np.minimum(ref["sigma_d"][20], ref["sigma_d"][-1])))
+    other = os.path.join(tmp, "model_error_run.h5")
+    write_full_run(other)
+    m0 = ref["m_dust"][0]
+    with h5py.File(other, "a") as f:
+        f["snapshots/sigma_d"][:, k] *= 1.25
+        f["snapshots/St"][:] *= 2.0
+        f["snapshots/m_out_inner"][:] += 0.01 * m0
+        f.attrs["config_toml"] = CONFIG_TOML + '\n[model]\nkind = "distribution"\n'
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")          # a [model] difference is not warned about
+        profiles, _ = model_error.compare_runs(other, path, times_yr=chosen)
+    assert np.array_equal(profiles["t_yr"], chosen), profiles["t_yr"]
+    i = [int(np.argmin(np.abs(ref["time"] - t))) for t in profiles["t_yr"]]
+    sd = ref["sigma_d"][i]
+    expect = 0.25 * sd[:, k] * ref["area"][k] / (sd @ ref["area"])
+    assert np.allclose(profiles["sigma_d_l1"], expect, rtol=1e-12, atol=0.0), \
+        (profiles["sigma_d_l1"], expect)
+    assert np.allclose(profiles["sigma_d_worst"], 1.25, rtol=1e-12), profiles["sigma_d_worst"]
+    assert np.all(profiles["sigma_d_median"] == 1.0), "one cell of many moves no median"
+    assert np.allclose(profiles[["St_median", "St_worst"]], 2.0, rtol=1e-14)
+    assert np.allclose(profiles["m_out_inner"], 0.01, rtol=1e-12)
+    # another disk is not the model's error: warned, by key
+    with h5py.File(other, "a") as f:
+        f.attrs["config_toml"] = CONFIG_TOML.replace("1e-3", "1e-4")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        model_error.compare_runs(other, path)
+    assert any("disk.alpha" in str(w.message) for w in caught), [str(w.message) for w in caught]
+    # another grid is refused
+    coarse = os.path.join(tmp, "model_error_coarse.h5")
+    write_run(coarse, n_cells=100)
+    try:
+        model_error.compare_runs(coarse, path)
+        raise AssertionError("different grids accepted")
+    except ValueError as err:
+        assert "100 cells" in str(err) and "[grid]" in str(err), err
+    with contextlib.redirect_stdout(io.StringIO()), \
+            contextlib.redirect_stderr(io.StringIO()) as err:
+        status = model_error.main([coarse, path])
+    assert status == 1 and "radial grids differ" in err.getvalue(), (status, err.getvalue())
+    return f"self: 0; Sigma_d L1 {profiles['sigma_d_l1'].iloc[-1]:.3g} as expected; grids checked"
+
+
 def write_full_run_path(tmp):
     """A single-size run file (no distribution)."""
     path = os.path.join(tmp, "single_size_for_distribution.h5")
@@ -987,7 +1048,7 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_torn_dataset,
           check_dust_to_gas_map_centre, check_plot_unfinished_title,
           check_plot_run_transport_only, check_plot_run_degraded,
           check_plot_run_failure_status, check_plot_run_single_snapshot,
-          check_distribution_panel]
+          check_distribution_panel, check_model_error]
 
 
 def main():
