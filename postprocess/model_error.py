@@ -16,7 +16,9 @@ alone. Per common snapshot time (`profiles`, one row each):
 - for sigma_d and each of St, m, phi (the mass-dominating particle; both runs write
   them): the median ratio run / reference over the dusty cells (Sigma_d,ref above
   `floor` times its largest value, and the run's too), and the worst factor
-  exp(max |ln ratio|);
+  exp(max |ln ratio|); against a size distribution also its mass-weighted mean mass
+  m_mean, which a single size's m stands for (spec §4.1), as m_mean_median and
+  m_mean_worst;
 - m_dust, m_out_inner, m_pl (coagulation + SI): the run's minus the reference's, in
   units of the reference's initial dust mass.
 `outcomes`: the /summary values both runs have (planetesimal masses and zone edges,
@@ -151,6 +153,9 @@ def _profile_row(run, reference, i, j, m0, floor, cells):
     for name in RATIO_FIELDS:
         if name in s and name in r:
             row[f"{name}_median"], row[f"{name}_worst"] = _ratios(s[name][i], r[name][j], dusty)
+    if "m_mean" in r:  # a single size's m stands for the distribution's mean mass
+        mine = s["m_mean"] if "m_mean" in s else s["m"]
+        row["m_mean_median"], row["m_mean_worst"] = _ratios(mine[i], r["m_mean"][j], dusty)
     for name in ("m_dust", "m_out_inner"):
         if name in s and name in r:
             row[name] = (float(s[name][i]) - float(r[name][j])) / m0

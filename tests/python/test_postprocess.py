@@ -985,6 +985,12 @@ def check_model_error(tmp):
         f["snapshots/St"][:] *= 2.0
         f["snapshots/m_out_inner"][:] += 0.01 * m0
         f.attrs["config_toml"] = CONFIG_TOML + '\n[model]\nkind = "distribution"\n'
+    # a distribution's mean mass, which the single size's m stands for
+    for name, value in ((other, {"m": 1e-3}), (path, {"m": 1e-3, "m_mean": 2.5e-4})):
+        with h5py.File(name, "a") as f:
+            for field, v in value.items():
+                write_dataset(f["snapshots"], field, np.full_like(ref["sigma_d"], v), "g",
+                              field, extendible=True)
     with warnings.catch_warnings():
         warnings.simplefilter("error")          # a [model] difference is not warned about
         profiles, _ = model_error.compare_runs(other, path, times_yr=chosen)
@@ -997,6 +1003,7 @@ def check_model_error(tmp):
     assert np.allclose(profiles["sigma_d_worst"], 1.25, rtol=1e-12), profiles["sigma_d_worst"]
     assert np.all(profiles["sigma_d_median"] == 1.0), "one cell of many moves no median"
     assert np.allclose(profiles[["St_median", "St_worst"]], 2.0, rtol=1e-14)
+    assert np.all(profiles["m_median"] == 1.0) and np.allclose(profiles["m_mean_median"], 4.0)
     assert np.allclose(profiles["m_out_inner"], 0.01, rtol=1e-12)
     # another disk is not the model's error: warned, by key
     with h5py.File(other, "a") as f:
