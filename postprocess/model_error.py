@@ -7,8 +7,8 @@ by field").
     panoptic-model-error single.h5 distribution.h5 [--times-yr 1e4,1e5] [--csv PREFIX]
     python3 -m postprocess.model_error ...          (the same, from the repository root)
 
-Both runs must share the radial grid; scene keys other than [model], [solver] and
-[output] that differ are warned about, since their differences are then not the model's
+Both runs must share the radial grid; scene keys other than [model], [solver], [output]
+and [meta] that differ are warned about, since their differences are then not the model's
 alone. Per common snapshot time (`profiles`, one row each):
 - sigma_d_l1: the fraction of the reference's dust mass that sits elsewhere,
   sum |Sigma_d - Sigma_d,ref| A / sum Sigma_d,ref A (A: annulus areas), over the cells
@@ -35,7 +35,6 @@ import pandas as pd
 
 from .reader import Run, load_run
 
-M_EARTH = 5.9722e27  # [g], as src/io's output
 # scene tables whose keys may differ between the two runs: the model itself and how it is
 # integrated and written
 MODEL_TABLES = ("model", "solver", "output", "meta")
