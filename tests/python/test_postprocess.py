@@ -18,6 +18,7 @@ import warnings
 
 import h5py
 import numpy as np
+import pandas as pd
 
 # the repository root, for `postprocess` when run without PYTHONPATH
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
@@ -964,7 +965,8 @@ def check_model_error(tmp):
     """compare_runs of a run against itself is exactly nothing; against a copy with one
     cell's Sigma_d x 1.25 and St x 2, m_out_inner + 1 % of the initial dust and another
     [model], it gives those numbers and no scene warning; a copy with another disk.alpha
-    is warned about by key; other grids are refused, by the command line too (status 1)."""
+    is warned about by key; other grids are refused, by the command line too (status 1);
+    the command line writes both tables as CSV (--csv, with --r-au)."""
     path = os.path.join(tmp, "model_error_ref.h5")
     ref, _ = write_full_run(path)
     profiles, outcomes = model_error.compare_runs(path, path)
@@ -1024,6 +1026,12 @@ def check_model_error(tmp):
             contextlib.redirect_stderr(io.StringIO()) as err:
         status = model_error.main([coarse, path])
     assert status == 1 and "radial grids differ" in err.getvalue(), (status, err.getvalue())
+    prefix = os.path.join(tmp, "model_error")
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        assert model_error.main([path, path, "--csv", prefix, "--r-au", "1,100"]) == 0
+    written = pd.read_csv(f"{prefix}_profiles.csv")
+    assert "sigma_d_l1" in out.getvalue() and len(written) == len(reader.load_run(path).time)
+    assert (written["sigma_d_l1"] == 0).all() and len(pd.read_csv(f"{prefix}_outcomes.csv")) >= 8
     return f"self: 0; Sigma_d L1 {profiles['sigma_d_l1'].iloc[-1]:.3g} as expected; grids checked"
 
 
