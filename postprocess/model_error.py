@@ -145,8 +145,9 @@ def _profile_row(run, reference, i, j, m0, floor, cells):
     sd, sd_ref = s["sigma_d"][i], r["sigma_d"][j]
     dusty = cells & (sd_ref > floor * sd_ref.max()) & (sd > floor * sd.max())
     area = np.where(cells, reference.area, 0.0)
+    held = float(sd_ref @ area)  # 0 once the reference's dust has left the cells: NaN
     row = {"t_yr": float(run.time[i]),
-           "sigma_d_l1": float(np.abs(sd - sd_ref) @ area / (sd_ref @ area)),
+           "sigma_d_l1": float(np.abs(sd - sd_ref) @ area) / held if held > 0 else np.nan,
            "dusty_cells": int(dusty.sum())}
     row["sigma_d_median"], row["sigma_d_worst"] = _ratios(sd, sd_ref, dusty)
     for name in RATIO_FIELDS:
