@@ -26,14 +26,13 @@ pebble masses, dust left; the earliest planetesimal formation), the run's, the
 reference's, their difference and ratio.
 """
 import argparse
-import os
 import sys
 import warnings
 
 import numpy as np
 import pandas as pd
 
-from .reader import Run, load_run
+from .reader import as_run
 
 # scene tables whose keys may differ between the two runs: the model itself and how it is
 # integrated and written
@@ -51,7 +50,7 @@ def compare_runs(run, reference, times_yr=None, floor=1e-6, r_au=None):
     the nearest common one), default every common snapshot; r_au: (lo, hi) [au], the
     profiles over the cells whose centres lie within, default all. ValueError when the
     grids differ, the runs share no snapshot time or no cell lies within r_au."""
-    run, reference = (r if isinstance(r, Run) else load_run(os.fspath(r)) for r in (run, reference))
+    run, reference = as_run(run), as_run(reference)
     _check_grids(run, reference)
     _warn_scene_differences(run, reference)
     pairs = _common_snapshots(run, reference, times_yr)

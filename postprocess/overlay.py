@@ -11,7 +11,7 @@ import os
 import numpy as np
 
 from . import plot, plot_run, style
-from .reader import Run, load_run
+from .reader import as_run
 
 RUN_COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
               "tab:pink", "tab:gray", "tab:olive", "tab:cyan")
@@ -32,7 +32,7 @@ SERIES = {
 
 def _runs(runs):
     """Run objects of runs (Run or path)."""
-    return [r if isinstance(r, Run) else load_run(os.fspath(r)) for r in runs]
+    return [as_run(r) for r in runs]
 
 
 def _labels(runs, labels):

@@ -371,6 +371,11 @@ class Run:
         return run_to_xarray(self)
 
 
+def as_run(run):
+    """`run` itself when it is a Run, else the Run read from the path `run`."""
+    return run if isinstance(run, Run) else load_run(os.fspath(run))
+
+
 def load_run(path):
     """Read the run file at `path` (read-only) and return a Run.
 
