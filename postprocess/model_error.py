@@ -54,7 +54,7 @@ def compare_runs(run, reference, times_yr=None, floor=1e-6, r_au=None):
     _check_grids(run, reference)
     _warn_scene_differences(run, reference)
     pairs = _common_snapshots(run, reference, times_yr)
-    m0 = float(reference.snapshots["sigma_d"][0] @ reference.area)
+    m0 = float(reference.dust_mass()[0])
     cells = np.ones(len(reference.r_c), bool)
     if r_au is not None:
         cells = (reference.r_c >= r_au[0]) & (reference.r_c <= r_au[1])
