@@ -11,7 +11,10 @@
 //   the model's Jacobian and with a central finite-difference Jacobian of the whole RHS
 //   (columns coloured by cell mod 3): the weighted RMS norm of each Newton correction,
 //   so that their ratio (the contraction) tells whether the Jacobian or the equations
-//   stop Newton;
+//   stop Newton; then full Newton (the model's Jacobian at every iterate) and 12
+//   iterations of the modified one, each with the components of its last correction and
+//   their bins' sigma, u, z = ln floor + ln u and r h (the floor's relaxation rate times
+//   the step) at the start and at the last iterate;
 // * the largest entries of h (J - J_fd) in the error weights' units, by variable.
 // Usage: build/tests/bench_porous_newton SCENE [--set key=value ...] [--probe N]
 //        [--every K] (probe every K-th failure)
@@ -91,7 +94,8 @@ long fd_jacobian(const DiskModel& model, const std::vector<double>& y0,
 std::vector<double> newton_corrections(const DiskModel& model, const Probe& pr,
                                        const std::vector<double>& jac,
                                        const std::vector<double>& w, int iters,
-                                       bool show_stuck = false) {
+                                       bool show_stuck = false, bool refresh = false,
+                                       const Simulation* sim = nullptr) {
   const SparsityPattern& p = model.pattern();
   const StateLayout& L = model.layout();
   const long n = p.size();
@@ -106,7 +110,15 @@ std::vector<double> newton_corrections(const DiskModel& model, const Probe& pr,
   if (!lu.factorize(m)) return out;
   std::vector<double> y(n), f(n), d(n);
   for (long i = 0; i < n; ++i) y[i] = pr.y[i] + pr.h * pr.ydot[i];
+  std::vector<double> jnow(jac.size());
   for (int it = 0; it < iters; ++it) {
+    if (refresh && it > 0) {  // full Newton: the Jacobian at the iterate
+      model.jacobian(pr.t + pr.h, y, jnow);
+      for (long c = 0; c < n; ++c)
+        for (auto k = col_ptr[c]; k < col_ptr[c + 1]; ++k)
+          m[k] = (rows[k] == c ? 1.0 : 0.0) - pr.h * jnow[k];
+      if (!lu.factorize(m)) break;
+    }
     model.rhs(pr.t + pr.h, y, f);
     for (long i = 0; i < n; ++i) d[i] = -(y[i] - pr.y[i] - pr.h * f[i]);
     if (!lu.solve(d)) break;
@@ -121,10 +133,27 @@ std::vector<double> newton_corrections(const DiskModel& model, const Probe& pr,
     std::vector<std::pair<double, long>> v;
     for (long i = 0; i < n; ++i) v.push_back({std::abs(d[i] * w[i]), i});
     std::sort(v.rbegin(), v.rend());
-    for (int q = 0; q < 8; ++q)
+    const auto* dist = sim != nullptr ? sim->distribution() : nullptr;
+    for (int q = 0; q < 8; ++q) {
+      const long i = v[q].second;
       std::printf("      last correction %.2e (weighted) in %s: y0 %.4e, iterate %.4e\n",
-                  v[q].first, L.describe(v[q].second).c_str(), pr.y[v[q].second],
-                  y[v[q].second]);
+                  v[q].first, L.describe(i).c_str(), pr.y[i], y[i]);
+      if (dist == nullptr || !dist->porous()) continue;
+      const int cell = static_cast<int>(i / L.n_cell_vars());
+      const int k =
+          static_cast<int>(i % L.n_cell_vars() - dist->bin_slot(0)) % dist->n_bins();
+      const long is = L.index(cell, dist->bin_slot(k)),
+                 ip = L.index(cell, dist->psi_slot(k));
+      for (const std::vector<double>* yy :
+           {&pr.y, static_cast<const std::vector<double>*>(&y)}) {
+        const auto c = dist->coefficients(cell, *yy);
+        const double u = (*yy)[ip] / (*yy)[is];
+        const double z = c.ln_phi_floor.empty() ? 0.0 : c.ln_phi_floor[k] + std::log(u);
+        std::printf("        %s: sigma %.4e u %.4e z %.4e r*h %.3e\n",
+                    yy == &pr.y ? "y0  " : "iter", (*yy)[is], u, z,
+                    c.relax_rate.empty() ? 0.0 : c.relax_rate[k] * pr.h);
+      }
+    }
   }
   return out;
 }
@@ -169,6 +198,10 @@ void analyse(const Simulation& sim, const Probe& pr, const IntegratorOptions& op
   std::printf("    FD Jacobian: %.1f s CPU, %ld entries outside the pattern\n",
               cpu_seconds() - t0, outside);
   print_norms("Newton, model J:", newton_corrections(model, pr, ja, w, 6));
+  print_norms("full Newton, model J:",
+              newton_corrections(model, pr, ja, w, 12, true, true, &sim));
+  print_norms("Newton, model J, 12:",
+              newton_corrections(model, pr, ja, w, 12, true, false, &sim));
   print_norms("Newton, FD J:", newton_corrections(model, pr, jf, w, 6, true));
   // largest h |J - J_fd|_ij w_i / w_j
   struct Entry {
