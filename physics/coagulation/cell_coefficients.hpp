@@ -351,11 +351,17 @@ inline CellCoefficients cell_coefficients(
           (ln_compaction_floor(m[k], perturbed->st[k], gas, sp, o) - c.ln_phi_floor[k]) /
           step;
     // spec §4.4 with physics/compaction.hpp's constants: t_relax = kRelaxFraction
-    // min(t_grow, kRelaxCapOmega/Omega), t_grow from the bin's sticking gain of mass per
-    // unit mass, sum_j K_kj n_j m_j / m_k, over the bins that hold mass (a slightly
-    // negative bin, integration error, would make t_relax negative: an unstable push)
+    // min(t_grow, kRelaxCapOmega/Omega), t_grow the bin's own growth time, its sticking
+    // gain of mass per unit mass from partners no more massive than itself,
+    // sum_{j <= k} K_kj n_j m_j / m_k [C] (the single size's t_grow, from partners eps m,
+    // eps < 1). A larger partner carries the bin's particle off rather than growing it,
+    // and leaves the bin's u as it is; counted, it made t_relax of small bins among
+    // giants m_j/m_k shorter, its push's tail held their phi up to 19 % above the floor
+    // and Newton stalled there (tests/bench/results/porous_newton.md, last section).
+    // Only bins that hold mass count (a slightly negative bin, integration error, would
+    // make t_relax negative: an unstable push).
     double growth = 0.0;
-    for (int j = 0; j < n; ++j)
+    for (int j = 0; j <= k; ++j)
       if (sigma[j] > 0.0)
         growth += c.kernel[static_cast<std::size_t>(k) * n + j] * sigma[j] / m[k];
     const double t_grow = 1.0 / (growth + 1e-30);

@@ -488,9 +488,9 @@ class Smoluchowski {
 
   //! The floors' rows of the Jacobian: T_k = -psi_k softplus(z_k) r_k, z_k = ln floor_k
   //! + ln u_k (spec §4.4), through psi_k, u_k (z_k and, by St_k, floor_k) and r_k =
-  //! r(growth_k), growth_k = sum_j K_kj sigma_j / m_k over sigma_j > 0
+  //! r(growth_k), growth_k = sum_{j <= k} K_kj sigma_j / m_k over sigma_j > 0
   //! (cell_coefficients), which moves with every such sigma_j and, through K_kj, every
-  //! u_j. Uses u_ of jacobian().
+  //! such u_j. Uses u_ of jacobian().
   void floor_jacobian(const CellCoefficients& c, std::span<const double> sigma,
                       std::span<const double> psi, std::span<double> jac) const {
     const int n = n_, nv = 2 * n;
@@ -516,8 +516,8 @@ class Smoluchowski {
       // through r_k: dT/d growth_k, then growth_k by sigma_j and ln u_j
       const double t_g = -psi[k] * sp * c.drelax_dgrowth[k] / m[k];
       if (t_g == 0.0) continue;
-      double own = 0.0;  // d growth_k m_k / d ln u_k: every K_kj by u_k
-      for (int j = 0; j < n; ++j) {
+      double own = 0.0;  // d growth_k m_k / d ln u_k: every K_kj (j <= k) by u_k
+      for (int j = 0; j <= k; ++j) {
         if (!(sigma[j] > 0.0)) continue;
         const std::size_t kj = static_cast<std::size_t>(k) * n + j;
         const double kk = c.kernel[kj];

@@ -15,6 +15,7 @@
 #include "physics/coagulation/cell_coefficients.hpp"
 #include "physics/coagulation/mass_grid.hpp"
 #include "physics/coagulation/smoluchowski.hpp"
+#include "physics/compaction.hpp"
 #include "physics/contact_mechanics.hpp"
 #include "physics/particle.hpp"
 #include "tests/unit/support/coagulation_checks.hpp"
@@ -97,8 +98,8 @@ struct FluffyCell {
 
 // The compaction floors' push T_k = -psi_k softplus(ln floor_k + ln u_k) r_k (spec §4.4,
 // §15.3) on a disk cell whose bins sit at their floors: the Jacobian follows ln floor_k
-// through St_k(u_k) and r_k through t_grow = m_k / sum_j K_kj sigma_j (every sigma_j, and
-// every u_j through K_kj). Without those two derivatives the same check fails.
+// through St_k(u_k) and r_k through t_grow = m_k / sum_{j <= k} K_kj sigma_j (every such
+// sigma_j, and u_j through K_kj). Without those two derivatives the same check fails.
 TEST(CoagulationPorous, JacobianFollowsTheFloorsAndTheirRelaxationRates) {
   FluffyCell cell;
   const LocalGas& gas = cell.gas;
@@ -125,6 +126,49 @@ TEST(CoagulationPorous, JacobianFollowsTheFloorsAndTheirRelaxationRates) {
   // measured 1.2e-10 and 3.0e-3 (of the largest entry |J_fd y_j| of the block)
   EXPECT_LT(with, 1e-7);
   EXPECT_GT(without, 1e-4);
+}
+
+// A bin's floor relaxation rate r_k = 1 / (kRelaxFraction soft_min(t_grow, kRelaxCapOmega
+// / Omega)) takes t_grow from the bin's own growth: its sticking gain per unit mass from
+// partners no more massive than itself, m_k / sum_{j <= k} K_kj sigma_j
+// (cell_coefficients). More mass in larger bins leaves it as it is; more in smaller bins
+// shortens it.
+TEST(CoagulationPorous, FloorRelaxationCountsTheBinsOwnGrowthOnly) {
+  FluffyCell cell;
+  const int n = cell.n;
+  const auto& m = cell.eng.grid().m;
+  auto coefficients = [&](const std::vector<double>& yy) {
+    return cell_coefficients(cell.eng, std::span<const double>(yy.data(), n),
+                             std::span<const double>(yy.data() + n, n), cell.gas,
+                             cell.model);
+  };
+  const int k = n / 2;
+  const CellCoefficients c0 = coefficients(cell.y);
+  ASSERT_EQ(c0.relax_rate.size(), static_cast<std::size_t>(n));
+  double growth = 0.0;
+  for (int j = 0; j <= k; ++j)
+    growth += c0.kernel[static_cast<std::size_t>(k) * n + j] * cell.y[j] / m[k];
+  const double t_cap = kRelaxCapOmega / cell.gas.omega_k;
+  const double expected =
+      1.0 / (kRelaxFraction *
+             std::pow(std::pow(growth, 8.0) + std::pow(t_cap, -8.0), -1.0 / 8.0));
+  std::printf("bin %d: t_grow Omega %.3g, r_k %.6e s^-1 (expected %.6e)\n", k,
+              cell.gas.omega_k / growth, c0.relax_rate[k], expected);
+  EXPECT_NEAR(c0.relax_rate[k] / expected, 1.0, 1e-12);
+  // 100x the mass in every larger bin, at the same u: r_k unchanged to the bit
+  std::vector<double> y = cell.y;
+  for (int j = k + 1; j < n; ++j) {
+    y[j] *= 100.0;
+    y[n + j] *= 100.0;
+  }
+  EXPECT_EQ(coefficients(y).relax_rate[k], c0.relax_rate[k]);
+  // 100x the mass in every smaller bin: a faster relaxation
+  y = cell.y;
+  for (int j = 0; j < k; ++j) {
+    y[j] *= 100.0;
+    y[n + j] *= 100.0;
+  }
+  EXPECT_GT(coefficients(y).relax_rate[k], 10.0 * c0.relax_rate[k]);
 }
 
 //! Every vector of CellCoefficients, for comparisons member by member.
