@@ -89,6 +89,21 @@ long fd_jacobian(const DiskModel& model, const std::vector<double>& y0,
   return outside;
 }
 
+//! The bin of a distribution's state variable i: its cell, its index k and the indices
+//! of its sigma_k and psi_k.
+struct BinOf {
+  int cell = 0, k = 0;
+  long sigma = 0, psi = 0;
+};
+BinOf bin_of(const StateLayout& L, const SizeDistribution& d, long i) {
+  BinOf b;
+  b.cell = static_cast<int>(i / L.n_cell_vars());
+  b.k = static_cast<int>(i % L.n_cell_vars() - d.bin_slot(0)) % d.n_bins();
+  b.sigma = L.index(b.cell, d.bin_slot(b.k));
+  b.psi = L.index(b.cell, d.psi_slot(b.k));
+  return b;
+}
+
 //! Implicit Euler from y0 over h by Newton with the Jacobian `jac` (fixed, evaluated at
 //! the predictor): the weighted RMS norm of each correction.
 std::vector<double> newton_corrections(const DiskModel& model, const Probe& pr,
@@ -139,20 +154,16 @@ std::vector<double> newton_corrections(const DiskModel& model, const Probe& pr,
       std::printf("      last correction %.2e (weighted) in %s: y0 %.4e, iterate %.4e\n",
                   v[q].first, L.describe(i).c_str(), pr.y[i], y[i]);
       if (dist == nullptr || !dist->porous()) continue;
-      const int cell = static_cast<int>(i / L.n_cell_vars());
-      const int k =
-          static_cast<int>(i % L.n_cell_vars() - dist->bin_slot(0)) % dist->n_bins();
-      const long is = L.index(cell, dist->bin_slot(k)),
-                 ip = L.index(cell, dist->psi_slot(k));
-      for (const std::vector<double>* yy :
-           {&pr.y, static_cast<const std::vector<double>*>(&y)}) {
-        const auto c = dist->coefficients(cell, *yy);
-        const double u = (*yy)[ip] / (*yy)[is];
-        const double z = c.ln_phi_floor.empty() ? 0.0 : c.ln_phi_floor[k] + std::log(u);
-        std::printf("        %s: sigma %.4e u %.4e z %.4e r*h %.3e\n",
-                    yy == &pr.y ? "y0  " : "iter", (*yy)[is], u, z,
-                    c.relax_rate.empty() ? 0.0 : c.relax_rate[k] * pr.h);
-      }
+      const BinOf b = bin_of(L, *dist, i);
+      auto show = [&](const char* what, const std::vector<double>& yy) {
+        const auto c = dist->coefficients(b.cell, yy);
+        const double u = dist->porosity(b.cell, b.k, yy).u;  // bin_porosity's rule
+        const double z = c.ln_phi_floor.empty() ? 0.0 : c.ln_phi_floor[b.k] + std::log(u);
+        std::printf("        %s: sigma %.4e u %.4e z %.4e r*h %.3e\n", what, yy[b.sigma],
+                    u, z, c.relax_rate.empty() ? 0.0 : c.relax_rate[b.k] * pr.h);
+      };
+      show("y0  ", pr.y);
+      show("iter", y);
     }
   }
   return out;
@@ -226,10 +237,9 @@ void analyse(const Simulation& sim, const Probe& pr, const IntegratorOptions& op
                 top[k].e, L.describe(top[k].r).c_str(), L.describe(top[k].c).c_str(),
                 top[k].a, top[k].f, yp[top[k].r], yp[top[k].c]);
   if (!top.empty() && d != nullptr && d->porous()) {  // the worst entry's bin
-    const long r = top[0].r;
-    const int cell = static_cast<int>(r / L.n_cell_vars());
-    const int k = static_cast<int>(r % L.n_cell_vars() - d->bin_slot(0)) % d->n_bins();
-    const long is = L.index(cell, d->bin_slot(k)), ip = L.index(cell, d->psi_slot(k));
+    const BinOf b = bin_of(L, *d, top[0].r);
+    const int cell = b.cell, k = b.k;
+    const long is = b.sigma, ip = b.psi;
     auto show = [&](const char* what, const std::vector<double>& yy) {
       const auto c = d->coefficients(cell, yy);
       std::vector<double> f(n);
