@@ -77,14 +77,19 @@ class DustCarrier {
   virtual double mass_unit() const = 0;
 };
 
-//! x/y with the derivative (x' - (x/y) y')/y: no y^2, which underflows for |y| < 1e-154
-//! (AD's quotient rule divides by y^2).
-inline double stable_ratio(double x, double y) { return x / y; }
+//! van Leer's limited half-slope a b/(a + b) (for a b > 0), with the derivative
+//! (b/(a + b))^2 a' + (a/(a + b))^2 b'. Both weights lie in (0, 1). Differentiating the
+//! product a (b/(a + b)) instead divides by a + b, which overflows for the differences of
+//! ~1e-300 between the nearly empty bins of a size distribution (a NaN Jacobian entry).
+inline double van_leer_half_slope(double a, double b) { return a * (b / (a + b)); }
 template <class D>
-Eigen::AutoDiffScalar<D> stable_ratio(const Eigen::AutoDiffScalar<D>& x,
-                                      const Eigen::AutoDiffScalar<D>& y) {
-  const double r = x.value() / y.value();
-  return Eigen::AutoDiffScalar<D>(r, (x.derivatives() - r * y.derivatives()) / y.value());
+Eigen::AutoDiffScalar<D> van_leer_half_slope(const Eigen::AutoDiffScalar<D>& a,
+                                             const Eigen::AutoDiffScalar<D>& b) {
+  const double sum = a.value() + b.value();
+  const double share_b = b.value() / sum, share_a = a.value() / sum;
+  return Eigen::AutoDiffScalar<D>(
+      a.value() * share_b,
+      share_b * share_b * a.derivatives() + share_a * share_a * b.derivatives());
 }
 
 class DustFaceFlux {
@@ -195,13 +200,11 @@ class DustFaceFlux {
           value_of(b) != 0.0) {
         // ab/(a + b) as a b/(a + b), the ratio in (0, 1) first: a nearly empty bin of a
         // size distribution has differences of ~1e-170, whose product and square
-        // underflow (0/0 in the derivative of a b/(a + b))
-        const T sum = a + b;
-        const T share = stable_ratio(b, sum);
-        out += v * (a * share);
+        // underflow
+        out += v * van_leer_half_slope(a, b);
         // d(face value)/d q_far = -(1/2) d psi/d a = -b^2/(a + b)^2
         if (d_far) {
-          const double sv = value_of(share);
+          const double sv = value_of(b) / (value_of(a) + value_of(b));
           *d_far = -value_of(v) * sv * sv * two_pi_rc_[far];
         }
       }
