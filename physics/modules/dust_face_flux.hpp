@@ -37,6 +37,12 @@ struct DustTransportOptions {
   //! difference behind the upwind cell, b the one across the face. The inner face and the
   //! faces whose far upwind cell lies off the grid stay first order.
   bool limited = false;
+  //! The Stokes number that sets the drift speed on an interior face: false, the
+  //! geometric mean of its two cells' (`face_stokes`); true, each cell's own (flux-vector
+  //! splitting: the flow is v(St_a)^+ q_a + v(St_b)^- q_b), so a cell of St >> 1 does not
+  //! slow the outflow of its neighbour (tests/bench/results/porous_mmsn.md, "Why the
+  //! single size's front creeps"). First-order advection of one population per cell.
+  bool upwind_stokes = false;
 };
 
 //! The VarInfo of a global variable booking a dust mass (the outflow through r_in, the
@@ -166,6 +172,22 @@ class DustFaceFlux {
     const T diff_coef =
         f > 0 && opt_.diffusion ? diffusion_coefficient(f, st, sg_a, sg_b) : T(0.0);
     return {v, diff_coef, f > 0 ? far_cell(f, value_of(v) > 0.0) : -1};
+  }
+
+  //! The flow of one transported quantity through interior face f with each cell's dust
+  //! drifting at its own speed (`DustTransportOptions::upwind_stokes`): ta and tb are
+  //! face f's terms at the St of cell a = f - 1 and of cell b = f, t_mean at their mean
+  //! (for the diffusion, as `flow`). First order: 2 pi r_c(a) v_a^+ qa + 2 pi r_c(b)
+  //! v_b^- qb, the upwinded r Sigma of `flow`.
+  template <class T>
+  T split_flow(int f, const FaceTerms<T>& ta, const FaceTerms<T>& tb,
+               const FaceTerms<T>& t_mean, const T& sg_a, const T& sg_b, const T& qa,
+               const T& qb) const {
+    T out(0.0);
+    if (value_of(ta.v) > 0.0) out += two_pi_rc_[f - 1] * ta.v * qa;
+    if (value_of(tb.v) < 0.0) out += two_pi_rc_[f] * tb.v * qb;
+    if (opt_.diffusion) out += two_pi_r_[f] * t_mean.diff_coef * (qb / sg_b - qa / sg_a);
+    return out;
   }
 
   //! The mass-like flow 2 pi r_f F of one transported quantity through face f with the

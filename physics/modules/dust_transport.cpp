@@ -112,6 +112,15 @@ int DustTransport::face_flows(int f, const T* ya, const T* yb, std::span<const d
       f > 0 ? T(sqrt(stokes_.St(f - 1, ya) * stokes_.St(f, yb))) : stokes_.St(0, ya);
   const T sg_a = gas_.sigma(f > 0 ? f - 1 : 0, ya), sg_b = gas_.sigma(f > 0 ? f : 1, yb);
   const auto face = flux_.face_terms(f, st, sg_a, sg_b);
+  if (opt_.upwind_stokes && f > 0) {  // each cell's dust at its own speed
+    const auto face_a = flux_.face_terms(f, T(stokes_.St(f - 1, ya)), sg_a, sg_b);
+    const auto face_b = flux_.face_terms(f, T(stokes_.St(f, yb)), sg_a, sg_b);
+    for (int k = 0; k < nt; ++k) {
+      const int s = transported_[k];
+      flows[k] = flux_.split_flow(f, face_a, face_b, face, sg_a, sg_b, ya[s], yb[s]);
+    }
+    return -1;
+  }
   for (int k = 0; k < nt; ++k) {
     const int s = transported_[k];
     flows[k] = flux_.flow(f, face, sg_a, sg_b, ya[s], yb[s],
@@ -256,9 +265,16 @@ std::vector<double> DustTransport::face_velocity(std::span<const double> y) cons
     const int a = f > 0 ? f - 1 : 0, b = f > 0 ? f : 1;
     const double* ya = &y[layout_.index(a, 0)];
     const double* yb = &y[layout_.index(b, 0)];
+    if (!opt_.drift) continue;
+    if (opt_.upwind_stokes && f > 0) {  // the speeds split_flow moves each cell's dust at
+      const double va = velocity(f, ya, yb, stokes_.St(a, ya));
+      const double vb = velocity(f, ya, yb, stokes_.St(b, yb));
+      out[f] = std::max(va, 0.0) + std::min(vb, 0.0);
+      continue;
+    }
     const double st =
         f > 0 ? sqrt(stokes_.St(a, ya) * stokes_.St(b, yb)) : stokes_.St(0, ya);
-    out[f] = opt_.drift ? velocity(f, ya, yb, st) : 0.0;
+    out[f] = velocity(f, ya, yb, st);
   }
   return out;
 }

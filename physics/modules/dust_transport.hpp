@@ -87,7 +87,9 @@ class DustTransport : public CellRangeForm<DustTransport>, public DustCarrier {
   }
   double mass_unit() const override { return mass_unit_; }
   std::vector<double> mass_flow(std::span<const double> y) const override;
-  //! Dust radial velocity on every face [cm s^-1] (0 on the outer face).
+  //! Dust radial velocity on every face [cm s^-1] (0 on the outer face). With
+  //! `upwind_stokes`, v(St_a)^+ + v(St_b)^-: the speed of the dust that crosses (both
+  //! terms are non-zero only on a face where the drift converges).
   std::vector<double> face_velocity(std::span<const double> y) const;
 
  private:

@@ -151,7 +151,9 @@ physics::GrowthOptions growth_options_from_config(const Config& cfg) {
 
 DustTransportOptions transport_options_from_config(const Config& cfg) {
   return {cfg.flag("transport.drift"), cfg.flag("transport.diffusion"),
-          cfg.str("transport.advection") == "van_leer"};
+          cfg.str("transport.advection") == "van_leer",
+          cfg.str("model.kind") == "single_size" &&
+              cfg.str("transport.face_stokes") == "upwind"};
 }
 
 PlanetesimalOptions planetesimal_options_from_config(const Config& cfg) {

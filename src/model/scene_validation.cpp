@@ -185,6 +185,12 @@ void validate_scene(const Config& cfg) {
                "needs growth.enabled = true (conversion depends on the particles); "
                "turn growth on or this channel off");
   validate_radial_structure(cfg);
+  if (cfg.str("model.kind") == "single_size" && cfg.flag("transport.drift") &&
+      cfg.str("transport.face_stokes") == "upwind" &&
+      cfg.str("transport.advection") == "van_leer")
+    cfg.fail("transport.face_stokes",
+             "splits the first-order drift flux by cell and has no van Leer form; set "
+             "transport.advection = \"upwind\" or transport.face_stokes = \"mean\"");
   if (cfg.flag("snowline.enabled") && cfg.str("disk.model") != "table" &&
       cfg.real("disk.q") < 0.0)
     cfg.fail("disk.q",

@@ -56,6 +56,14 @@ std::vector<KeySpec> transport_keys() {
               "advection scheme of the drift: first-order upwind, or second-order upwind "
               "with a van Leer-limited reconstruction of r Sigma (MUSCL; widens the "
               "Jacobian stencil to 4 cells per face)")),
+      when({is("transport.drift", {"true"}), single_size()},
+           choice(
+               "transport.face_stokes", "mean", {"mean", "upwind"},
+               "Stokes number of the drift on a face: \"mean\", the geometric mean of "
+               "its two cells' (exact for power laws on the log grid); \"upwind\", each "
+               "cell's dust leaves at its own St (flux-vector splitting), so a zone of "
+               "St >> 1 does not slow its neighbour's outflow "
+               "(tests/bench/results/porous_mmsn.md); first-order advection only")),
   };
 }
 

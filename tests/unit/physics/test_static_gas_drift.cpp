@@ -3,6 +3,8 @@
 // come from the pressure gradient between the two centres either side of each face (spec
 // §1.4, §6.1), the inner face taking that of the first interior face. On a power-law
 // disk dlnP/dlnr is the same everywhere, so only such a profile tells the faces apart.
+// Also: the van Leer flux by hand, and transport.face_stokes = "upwind" (each cell's dust
+// at its own St's speed) by hand and refused with van Leer.
 //
 // Set-up (as tests/unit/physics/test_transport_flux.cpp): 3 log-spaced cells from 3 to 9
 // au (faces 3, 4.3267, 6.2403, 9 au), MMSN temperature T = 280 (r/au)^-1/2 K, mu = 2.34,
@@ -35,8 +37,11 @@
 #include "physics/modules/dust_transport.hpp"
 #include "physics/stokes_model.hpp"
 #include "src/core/units.hpp"
+#include "src/model/scene_validation.hpp"
+#include "src/scene/config.hpp"
 #include "src/solver/grid.hpp"
 #include "src/solver/state_layout.hpp"
+#include "tests/unit/support/config_error.hpp"
 
 namespace panoptic {
 namespace {
@@ -148,6 +153,70 @@ TEST(DustTransportFlux, VanLeerFluxInwardAndOutward) {
     EXPECT_NEAR(flow[f] / (2.0 * pi * au * v * face_q[f]), 1.0, 1e-10) << "face " << f;
   }
   EXPECT_EQ(flow[n], 0.0);  // closed outer face
+}
+
+// transport.face_stokes = "upwind" (flux-vector splitting): the dust crossing a face
+// drifts at the speed of its own cell's St, not at the mean of the two cells'. The gas of
+// the van Leer test above (face 2 drifts outward, the others inward); St 1e3 in cell 0
+// beside St 1 in cell 1, whose dust the mean St (sqrt(1e3)) would move 15.8x too slowly
+// through face 1.
+TEST(DustTransportFlux, UpwindStokesMovesEachCellsDustAtItsOwnSpeed) {
+  const double au = kAu, pi = 3.14159265358979323846;
+  ThermalParams th;
+  const PowerLawDisk disk({units::kMsun, units::kLsun}, th, 1700.0, 1.5);
+  const int n = 5;
+  const Grid grid(3.0 * au, 9.0 * au, n);
+  const double x[] = {1.0, 1.0, 3.0, 3.0, 1.0}, c[] = {1.0, 1.5, 2.5, 4.5, 8.5};
+  const std::vector<double> st = {1e3, 1.0, 0.5, 0.5, 0.1};
+  GasColumn gas;
+  for (int i = 0; i < n; ++i)
+    gas.static_sigma.push_back(1700.0 * std::pow(grid.r_c(i) / au, -1.5) * x[i]);
+  const double dlnr = std::log(3.0) / n;
+  const double dlnp[] = {-3.25, -3.25, -3.25 + std::log(3.0) / dlnr, -3.25,
+                         -3.25 - std::log(3.0) / dlnr};  // faces 0..4
+  for (const bool upwind : {true, false}) {
+    StateLayout layout(n);
+    PrescribedStokes stokes(st);
+    DustTransportOptions opt;
+    opt.diffusion = false;
+    opt.upwind_stokes = upwind;
+    DustTransport transport(layout, grid, disk, gas, nullptr, stokes, opt, 1.0, 1.0);
+    layout.freeze();
+    std::vector<double> y(layout.size(), 0.0);
+    for (int i = 0; i < n; ++i)
+      y[layout.index(i, transport.sigma_slot())] = c[i] / (grid.r_c(i) / au);
+    const auto flow = transport.mass_flow(y);
+    const auto v = transport.face_velocity(y);
+    for (int f = 0; f < n; ++f) {
+      const int up = f == 2 ? 1 : f;  // face 2 outward: cell 1 upwind; face 0: cell 0
+      const double st_face = upwind || f == 0 ? st[up] : std::sqrt(st[f - 1] * st[f]);
+      const double want = drift_speed_by_hand(grid.r_f(f), st_face, dlnp[f]);
+      EXPECT_NEAR(v[f] / want, 1.0, 1e-10) << "face " << f << (upwind ? " upwind" : "");
+      EXPECT_NEAR(flow[f] / (2.0 * pi * au * want * c[up]), 1.0, 1e-10)
+          << "face " << f << (upwind ? " upwind" : " mean");
+    }
+    const double at_mean = drift_speed_by_hand(grid.r_f(1), std::sqrt(1e3), dlnp[1]);
+    // St/(1 + St^2) at St 1 over that at sqrt(1e3): 15.8
+    const double faster = 0.5 / (std::sqrt(1e3) / 1001.0);
+    EXPECT_NEAR(v[1] / at_mean, upwind ? faster : 1.0, 1e-10 * faster);
+  }
+}
+
+// The split flux has no limited (van Leer) form: the pair is refused by name, with the
+// fix.
+TEST(DustTransportFlux, UpwindStokesWithVanLeerIsRefused) {
+  const std::string fiducial = std::string(PANOPTIC_SOURCE_DIR) + "/params/fiducial.toml";
+  const std::vector<std::string> upwind{"transport.face_stokes=\"upwind\""},
+      van_leer{"transport.advection=\"van_leer\""},
+      both{"transport.face_stokes=\"upwind\"", "transport.advection=\"van_leer\""};
+  const std::string msg =
+      config_error_message([&] { validate_scene(load_scene(fiducial, both)); },
+                           "face_stokes upwind with van Leer");
+  EXPECT_NE(msg.find("transport.face_stokes"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("transport.advection = \"upwind\""), std::string::npos) << msg;
+  // each alone is a valid scene
+  validate_scene(load_scene(fiducial, upwind));
+  validate_scene(load_scene(fiducial, van_leer));
 }
 
 }  // namespace

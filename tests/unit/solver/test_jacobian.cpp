@@ -125,6 +125,13 @@ const bool kTransportCases = register_jacobian_cases(
         {"DriftAndDiffusionVanLeerEvolvingGas",
          {"transport.advection=\"van_leer\"", "gas.evolve=true"},
          "drift + diffusion + viscous gas, van Leer"},
+        // transport.face_stokes = "upwind": each cell's dust at its own St's speed
+        {"DriftUpwindStokes",
+         {"transport.face_stokes=\"upwind\""},
+         "drift + diffusion, upwind St"},
+        {"DriftUpwindStokesEvolvingGas",
+         {"transport.face_stokes=\"upwind\"", "gas.evolve=true"},
+         "drift + diffusion + viscous gas, upwind St"},
         {"ViscousGasAlone",
          {"gas.evolve=true", "transport.drift=false", "transport.diffusion=false"},
          "viscous gas alone"},
