@@ -29,7 +29,9 @@
 // and checks them against the rounded hand values to 1e-5.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "disk/gas_column.hpp"
@@ -49,6 +51,7 @@ namespace {
 // spec §1.1 constants
 constexpr double kAu = 1.496e13, kG = 6.674e-8, kMsunG = 1.989e33, kBoltz = 1.3807e-16,
                  kMassH = 1.6735e-24;
+constexpr double kPi = 3.14159265358979323846;
 
 //! The drift speed on a face at radius r [cm] by hand: v = -2 St eta v_K/(1 + St^2),
 //! eta v_K = -1/2 (c_s^2/v_K) dlnP/dlnr, MMSN temperature T = 280 (r/au)^-1/2 K,
@@ -94,6 +97,39 @@ TEST(DustTransportFlux, FaceVelocityWithStaticGasThatIsNotAPowerLaw) {
   EXPECT_EQ(v[3], 0.0);  // closed outer face
 }
 
+// The 5 log-spaced cells of 3-9 au of the flux tests below: MMSN gas times x = (1, 1, 3,
+// 3, 1), a pressure bump whose face 2 drifts outward; dust Sigma_d = c/(r_c/au), so
+// q = 2 pi r_c Sigma_d = 2 pi au c with c = (1, 1.5, 2.5, 4.5, 8.5).
+struct BumpDisk {
+  static constexpr int n = 5;
+  ThermalParams th;
+  PowerLawDisk disk{{units::kMsun, units::kLsun}, th, 1700.0, 1.5};
+  Grid grid{3.0 * kAu, 9.0 * kAu, n};
+  GasColumn gas;
+  const double c[n] = {1.0, 1.5, 2.5, 4.5, 8.5};
+  double dlnp[n];  //!< dln P/dln r on faces 0..n-1
+  BumpDisk() {
+    const double x[] = {1.0, 1.0, 3.0, 3.0, 1.0};
+    for (int i = 0; i < n; ++i)
+      gas.static_sigma.push_back(1700.0 * std::pow(grid.r_c(i) / kAu, -1.5) * x[i]);
+    const double dlnr = std::log(3.0) / n, bump = std::log(3.0) / dlnr;
+    const double faces[] = {-3.25, -3.25, -3.25 + bump, -3.25, -3.25 - bump};
+    std::copy(faces, faces + n, dlnp);
+  }
+  //! The mass flow and the velocity on every face of one population with St per cell.
+  std::pair<std::vector<double>, std::vector<double>> flows(
+      const std::vector<double>& st, const DustTransportOptions& opt) const {
+    StateLayout layout(n);
+    PrescribedStokes stokes(st);
+    DustTransport transport(layout, grid, disk, gas, nullptr, stokes, opt, 1.0, 1.0);
+    layout.freeze();
+    std::vector<double> y(layout.size(), 0.0);
+    for (int i = 0; i < n; ++i)
+      y[layout.index(i, transport.sigma_slot())] = c[i] / (grid.r_c(i) / kAu);
+    return {transport.mass_flow(y), transport.face_velocity(y)};
+  }
+};
+
 // The limited (van Leer) drift flux on every face, inward and outward, against the MUSCL
 // formula worked out from the state (tests/bench/README.md, Work-precision:
 // `transport.advection = "van_leer"`; van Leer 1977, LeVeque 2002 §6.9). 5 log-spaced
@@ -114,45 +150,26 @@ TEST(DustTransportFlux, FaceVelocityWithStaticGasThatIsNotAPowerLaw) {
 // 1.16667; face 2: a = 0.5, b = 1: 1.5 + 0.5/1.5 = 1.83333; face 3: a = -4, b = -2: 4.5 +
 // 8/(-6) = 3.16667.
 TEST(DustTransportFlux, VanLeerFluxInwardAndOutward) {
-  const double au = kAu, pi = 3.14159265358979323846;
-  ThermalParams th;
-  const PowerLawDisk disk({units::kMsun, units::kLsun}, th, 1700.0, 1.5);
-  const int n = 5;
-  const Grid grid(3.0 * au, 9.0 * au, n);
-  const double x[] = {1.0, 1.0, 3.0, 3.0, 1.0}, c[] = {1.0, 1.5, 2.5, 4.5, 8.5};
-  GasColumn gas;
-  for (int i = 0; i < n; ++i)
-    gas.static_sigma.push_back(1700.0 * std::pow(grid.r_c(i) / au, -1.5) * x[i]);
-  StateLayout layout(n);
-  PrescribedStokes stokes(std::vector<double>(n, 0.1));
+  const BumpDisk d;
   DustTransportOptions opt;
   opt.diffusion = false;
   opt.limited = true;
-  DustTransport transport(layout, grid, disk, gas, nullptr, stokes, opt, 1.0, 1.0);
-  layout.freeze();
-  std::vector<double> y(layout.size(), 0.0);
-  for (int i = 0; i < n; ++i)
-    y[layout.index(i, transport.sigma_slot())] = c[i] / (grid.r_c(i) / au);
-  const auto flow = transport.mass_flow(y);
-  ASSERT_EQ(flow.size(), std::size_t(n + 1));
-
-  const double dlnr = std::log(3.0) / n;
-  const double dlnp[] = {-3.25, -3.25, -3.25 + std::log(3.0) / dlnr, -3.25,
-                         -3.25 - std::log(3.0) / dlnr};  // faces 0..4
-  const double q[] = {c[0], c[1], c[2], c[3], c[4]};     // q / (2 pi au)
-  const auto muscl = [&](int u, int w, int d) {
-    const double a = q[u] - q[w], b = q[d] - q[u];
+  const auto [flow, v_face] = d.flows(std::vector<double>(BumpDisk::n, 0.1), opt);
+  ASSERT_EQ(flow.size(), std::size_t(BumpDisk::n + 1));
+  const double* q = d.c;  // q / (2 pi au)
+  const auto muscl = [&](int u, int w, int dn) {
+    const double a = q[u] - q[w], b = q[dn] - q[u];
     return q[u] + a * b / (a + b);
   };
   const double face_q[] = {q[0], muscl(1, 2, 0), muscl(1, 0, 2), muscl(3, 4, 2), q[4]};
   const double hand_q[] = {1.0, 1.1666667, 1.8333333, 3.1666667, 8.5};
-  for (int f = 0; f < n; ++f) {
-    const double v = drift_speed_by_hand(grid.r_f(f), 0.1, dlnp[f]);
+  for (int f = 0; f < BumpDisk::n; ++f) {
+    const double v = drift_speed_by_hand(d.grid.r_f(f), 0.1, d.dlnp[f]);
     EXPECT_EQ(v > 0.0, f == 2) << "face " << f;
     EXPECT_NEAR(face_q[f] / hand_q[f], 1.0, 1e-7) << "face " << f;
-    EXPECT_NEAR(flow[f] / (2.0 * pi * au * v * face_q[f]), 1.0, 1e-10) << "face " << f;
+    EXPECT_NEAR(flow[f] / (2.0 * kPi * kAu * v * face_q[f]), 1.0, 1e-10) << "face " << f;
   }
-  EXPECT_EQ(flow[n], 0.0);  // closed outer face
+  EXPECT_EQ(flow[BumpDisk::n], 0.0);  // closed outer face
 }
 
 // transport.face_stokes = "upwind" (flux-vector splitting): the dust crossing a face
@@ -161,41 +178,22 @@ TEST(DustTransportFlux, VanLeerFluxInwardAndOutward) {
 // beside St 1 in cell 1, whose dust the mean St (sqrt(1e3)) would move 15.8x too slowly
 // through face 1.
 TEST(DustTransportFlux, UpwindStokesMovesEachCellsDustAtItsOwnSpeed) {
-  const double au = kAu, pi = 3.14159265358979323846;
-  ThermalParams th;
-  const PowerLawDisk disk({units::kMsun, units::kLsun}, th, 1700.0, 1.5);
-  const int n = 5;
-  const Grid grid(3.0 * au, 9.0 * au, n);
-  const double x[] = {1.0, 1.0, 3.0, 3.0, 1.0}, c[] = {1.0, 1.5, 2.5, 4.5, 8.5};
+  const BumpDisk d;
   const std::vector<double> st = {1e3, 1.0, 0.5, 0.5, 0.1};
-  GasColumn gas;
-  for (int i = 0; i < n; ++i)
-    gas.static_sigma.push_back(1700.0 * std::pow(grid.r_c(i) / au, -1.5) * x[i]);
-  const double dlnr = std::log(3.0) / n;
-  const double dlnp[] = {-3.25, -3.25, -3.25 + std::log(3.0) / dlnr, -3.25,
-                         -3.25 - std::log(3.0) / dlnr};  // faces 0..4
   for (const bool upwind : {true, false}) {
-    StateLayout layout(n);
-    PrescribedStokes stokes(st);
     DustTransportOptions opt;
     opt.diffusion = false;
     opt.upwind_stokes = upwind;
-    DustTransport transport(layout, grid, disk, gas, nullptr, stokes, opt, 1.0, 1.0);
-    layout.freeze();
-    std::vector<double> y(layout.size(), 0.0);
-    for (int i = 0; i < n; ++i)
-      y[layout.index(i, transport.sigma_slot())] = c[i] / (grid.r_c(i) / au);
-    const auto flow = transport.mass_flow(y);
-    const auto v = transport.face_velocity(y);
-    for (int f = 0; f < n; ++f) {
+    const auto [flow, v] = d.flows(st, opt);
+    for (int f = 0; f < BumpDisk::n; ++f) {
       const int up = f == 2 ? 1 : f;  // face 2 outward: cell 1 upwind; face 0: cell 0
       const double st_face = upwind || f == 0 ? st[up] : std::sqrt(st[f - 1] * st[f]);
-      const double want = drift_speed_by_hand(grid.r_f(f), st_face, dlnp[f]);
+      const double want = drift_speed_by_hand(d.grid.r_f(f), st_face, d.dlnp[f]);
       EXPECT_NEAR(v[f] / want, 1.0, 1e-10) << "face " << f << (upwind ? " upwind" : "");
-      EXPECT_NEAR(flow[f] / (2.0 * pi * au * want * c[up]), 1.0, 1e-10)
+      EXPECT_NEAR(flow[f] / (2.0 * kPi * kAu * want * d.c[up]), 1.0, 1e-10)
           << "face " << f << (upwind ? " upwind" : " mean");
     }
-    const double at_mean = drift_speed_by_hand(grid.r_f(1), std::sqrt(1e3), dlnp[1]);
+    const double at_mean = drift_speed_by_hand(d.grid.r_f(1), std::sqrt(1e3), d.dlnp[1]);
     // St/(1 + St^2) at St 1 over that at sqrt(1e3): 15.8
     const double faster = 0.5 / (std::sqrt(1e3) / 1001.0);
     EXPECT_NEAR(v[1] / at_mean, upwind ? faster : 1.0, 1e-10 * faster);
