@@ -100,21 +100,20 @@ T DustTransport::velocity(int f, const T* ya, const T* yb, const T& st) const {
 template <class T>
 int DustTransport::face_flows(int f, const T* ya, const T* yb, std::span<const double> y,
                               T* flows, double* d_far) const {
-  using std::sqrt;
   const int nt = static_cast<int>(transported_.size());
-  // Stokes number on the face: geometric mean of the neighbours (exact for power laws on
-  // the log-spaced grid, where r_f is the geometric mean of the centres); the inner face
-  // takes the first cell's value. Not flux-vector splitting (each cell's dust leaving at
-  // the speed of its own St, v_a^+ q_a + v_b^- q_b): on the fiducial scene that comes
-  // nearer the fine-grid planetesimal mass but needs many more steps and drives stronger
-  // travelling waves at the growth front (tests/bench/results/performance_log.md).
-  const T st =
-      f > 0 ? T(sqrt(stokes_.St(f - 1, ya) * stokes_.St(f, yb))) : stokes_.St(0, ya);
+  // Stokes number on the face (DustFaceFlux::face_stokes): the geometric mean of the
+  // neighbours. With `upwind_stokes` each cell's dust leaves at the speed of its own St
+  // instead (flux-vector splitting, v_a^+ q_a + v_b^- q_b); on the fiducial scene that
+  // needed many more steps and drove stronger travelling waves at the growth front
+  // (tests/bench/results/performance_log.md), so it is an option.
+  const T st_a = stokes_.St(f > 0 ? f - 1 : 0, ya);
+  const T st_b = f > 0 ? T(stokes_.St(f, yb)) : st_a;
   const T sg_a = gas_.sigma(f > 0 ? f - 1 : 0, ya), sg_b = gas_.sigma(f > 0 ? f : 1, yb);
-  const auto face = flux_.face_terms(f, st, sg_a, sg_b);
+  const auto face =
+      flux_.face_terms(f, DustFaceFlux::face_stokes(f, st_a, st_b), sg_a, sg_b);
   if (opt_.upwind_stokes && f > 0) {  // each cell's dust at its own speed
-    const auto face_a = flux_.face_terms(f, T(stokes_.St(f - 1, ya)), sg_a, sg_b);
-    const auto face_b = flux_.face_terms(f, T(stokes_.St(f, yb)), sg_a, sg_b);
+    const auto face_a = flux_.face_terms(f, st_a, sg_a, sg_b);
+    const auto face_b = flux_.face_terms(f, st_b, sg_a, sg_b);
     for (int k = 0; k < nt; ++k) {
       const int s = transported_[k];
       flows[k] = flux_.split_flow(f, face_a, face_b, face, sg_a, sg_b, ya[s], yb[s]);
@@ -258,7 +257,6 @@ std::vector<double> DustTransport::mass_flow(std::span<const double> y) const {
 }
 
 std::vector<double> DustTransport::face_velocity(std::span<const double> y) const {
-  using std::sqrt;
   const int n = grid_.n_cells();
   std::vector<double> out(n + 1, 0.0);
   for (int f = 0; f < n; ++f) {
@@ -266,15 +264,12 @@ std::vector<double> DustTransport::face_velocity(std::span<const double> y) cons
     const double* ya = &y[layout_.index(a, 0)];
     const double* yb = &y[layout_.index(b, 0)];
     if (!opt_.drift) continue;
-    if (opt_.upwind_stokes && f > 0) {  // the speeds split_flow moves each cell's dust at
-      const double va = velocity(f, ya, yb, stokes_.St(a, ya));
-      const double vb = velocity(f, ya, yb, stokes_.St(b, yb));
-      out[f] = std::max(va, 0.0) + std::min(vb, 0.0);
-      continue;
-    }
-    const double st =
-        f > 0 ? sqrt(stokes_.St(a, ya) * stokes_.St(b, yb)) : stokes_.St(0, ya);
-    out[f] = velocity(f, ya, yb, st);
+    const double st_a = stokes_.St(a, ya), st_b = f > 0 ? stokes_.St(b, yb) : st_a;
+    if (opt_.upwind_stokes && f > 0)  // the speeds split_flow moves each cell's dust at
+      out[f] = std::max(velocity(f, ya, yb, st_a), 0.0) +
+               std::min(velocity(f, ya, yb, st_b), 0.0);
+    else
+      out[f] = velocity(f, ya, yb, DustFaceFlux::face_stokes(f, st_a, st_b));
   }
   return out;
 }
