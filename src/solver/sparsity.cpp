@@ -46,6 +46,17 @@ SparsityPattern::SparsityPattern(PatternBuilder&& builder) : n_(builder.size()) 
     row_index_.push_back(row);
   }
   for (long c = 0; c < n_; ++c) col_ptr_[c + 1] += col_ptr_[c];
+  run_ptr_.assign(static_cast<std::size_t>(n_) + 1, 0);
+  for (long c = 0; c < n_; ++c) {
+    for (auto p = col_ptr_[c]; p < col_ptr_[c + 1]; ++p) {
+      const auto row = row_index_[static_cast<std::size_t>(p)];
+      if (p > col_ptr_[c] && row == row_index_[static_cast<std::size_t>(p) - 1] + 1)
+        ++runs_.back().length;
+      else
+        runs_.push_back({row, 1});
+    }
+    run_ptr_[static_cast<std::size_t>(c) + 1] = runs_.size();
+  }
 }
 
 long SparsityPattern::position(long row, long col) const {
@@ -65,11 +76,15 @@ void SparsityPattern::copy_structure_to(sunindextype* colptrs,
 void SparsityPattern::multiply(std::span<const double> values, std::span<const double> x,
                                std::span<double> y) const {
   std::fill(y.begin(), y.end(), 0.0);
-  for (long c = 0; c < n_; ++c) {
-    const double xc = x[static_cast<std::size_t>(c)];
-    for (auto p = col_ptr_[c]; p < col_ptr_[c + 1]; ++p)
-      y[static_cast<std::size_t>(row_index_[p])] +=
-          values[static_cast<std::size_t>(p)] * xc;
+  const double* v = values.data();
+  for (std::size_t c = 0; c < static_cast<std::size_t>(n_); ++c) {
+    const double xc = x[c];
+    for (std::size_t r = run_ptr_[c]; r < run_ptr_[c + 1]; ++r) {
+      double* yr = y.data() + runs_[r].first_row;
+      const auto length = runs_[r].length;
+      for (sunindextype k = 0; k < length; ++k) yr[k] += v[k] * xc;
+      v += length;
+    }
   }
 }
 

@@ -4,7 +4,8 @@
 // (src/solver/block_banded_lu.hpp). The state is the scene's at --t-yr, integrated with
 // the scene's own solver settings; gamma = --gamma-yr (BDF1's h). Prints the CPU time of
 // each set-up and solve (medians of --reps), the residual |M x - b|_inf / |b|_inf of
-// each solution of a random right-hand side and their difference.
+// each solution of a random right-hand side and their difference; and the CPU time of
+// the product J b (GMRES's) by runs of rows against entry by entry.
 // Usage: build/tests/bench_block_solver SCENE [--t-yr T] [--gamma-yr G] [--reps R]
 //        [--set key=value ...]
 // Results: tests/bench/results/block_solver.md.
@@ -46,14 +47,21 @@ double median_time(int reps, const std::function<void()>& f) {
   return t[t.size() / 2];
 }
 
-//! |M x - b|_inf / |b|_inf for M in CSC form.
-double residual(const SparsityPattern& p, const std::vector<double>& m,
-                const std::vector<double>& x, const std::vector<double>& b) {
-  std::vector<double> r(b.size(), 0.0);
+//! r = M x for M in CSC form, entry by entry through the row indices.
+void product_by_entries(const SparsityPattern& p, const std::vector<double>& m,
+                        const std::vector<double>& x, std::vector<double>& r) {
+  std::fill(r.begin(), r.end(), 0.0);
   const auto col_ptr = p.col_ptr();
   const auto rows = p.row_index();
   for (long c = 0; c < p.size(); ++c)
     for (auto k = col_ptr[c]; k < col_ptr[c + 1]; ++k) r[rows[k]] += m[k] * x[c];
+}
+
+//! |M x - b|_inf / |b|_inf for M in CSC form.
+double residual(const SparsityPattern& p, const std::vector<double>& m,
+                const std::vector<double>& x, const std::vector<double>& b) {
+  std::vector<double> r(b.size());
+  product_by_entries(p, m, x, r);
   double num = 0.0, den = 0.0;
   for (std::size_t i = 0; i < b.size(); ++i) {
     num = std::max(num, std::abs(r[i] - b[i]));
@@ -157,6 +165,17 @@ int main(int argc, char** argv) {
               block_solve, residual(pattern, m, x_block, b));
   std::printf("block %s; |x_block - x_klu|_inf / |x_klu|_inf = %.2e\n",
               ok ? "succeeded" : "FAILED", diff / scale);
+  // GMRES's product J v (SparsityPattern::multiply, over runs of rows) against the same
+  // sums entry by entry: the same bits, and the CPU time of each (medians of 10 reps)
+  std::vector<double> jb(b.size()), jb_entries(b.size());
+  const double product_runs =
+      median_time(10 * reps, [&] { pattern.multiply(jac, b, jb); });
+  const double product_entries =
+      median_time(10 * reps, [&] { product_by_entries(pattern, jac, b, jb_entries); });
+  const bool same = jb == jb_entries;
+  std::printf("product J b: %.4g s by runs of rows, %.4g s entry by entry (%s)\n",
+              product_runs, product_entries, same ? "identical" : "DIFFERENT");
+  ok = ok && same;
   SUNLinSolFree(klu);
   SUNMatDestroy(a);
   N_VDestroy(xv);

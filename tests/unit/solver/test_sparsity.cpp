@@ -1,10 +1,11 @@
 // The Jacobian's pattern (src/solver/sparsity.hpp): built from repeated, unordered
-// entries; where its diagonal sits; dense blocks added as entry by entry; and the Newton
-// matrix I - c J that both integrators and the GMRES preconditioner factorise,
-// against the same matrix written out by hand.
+// entries; where its diagonal sits; its product with a vector; dense blocks added as
+// entry by entry; and the Newton matrix I - c J that both integrators and the GMRES
+// preconditioner factorise, against the same matrix written out by hand.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <random>
 #include <set>
@@ -96,6 +97,39 @@ TEST(Sparsity, RepeatedAndUnorderedEntriesGiveTheSortedUniquePattern) {
     EXPECT_EQ(pattern.col_ptr()[static_cast<std::size_t>(c) + 1],
               col_count[static_cast<std::size_t>(c) + 1]);
   }
+}
+
+TEST(Sparsity, ProductByRunsOfRowsIsTheEntryByEntrySumToTheBit) {
+  // dense 5 x 5 cell blocks (one run of rows per column), transport-like couplings to
+  // the neighbouring cells' same rows, and random entries that break runs anywhere
+  const long cell = 5, n_cells = 6, n = cell * n_cells;
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<long> index(0, n - 1);
+  PatternBuilder builder(n);
+  for (long b = 0; b < n_cells; ++b)
+    for (long r = 0; r < cell; ++r)
+      for (long c = 0; c < cell; ++c) {
+        builder.add(b * cell + r, b * cell + c);
+        if (b > 0) builder.add((b - 1) * cell + r, b * cell + r);
+      }
+  for (int k = 0; k < 80; ++k) builder.add(index(rng), index(rng));
+  const SparsityPattern pattern(builder);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<double> values(static_cast<std::size_t>(pattern.nnz()));
+  for (double& v : values) v = value(rng) * std::exp(30.0 * value(rng));
+  std::vector<double> x(static_cast<std::size_t>(n));
+  for (double& v : x) v = value(rng) * std::exp(30.0 * value(rng));
+  // entry by entry: column after column, each column's rows in order
+  std::vector<double> expected(static_cast<std::size_t>(n), 0.0);
+  for (long c = 0; c < n; ++c)
+    for (auto p = pattern.col_ptr()[static_cast<std::size_t>(c)];
+         p < pattern.col_ptr()[static_cast<std::size_t>(c) + 1]; ++p)
+      expected[static_cast<std::size_t>(
+          pattern.row_index()[static_cast<std::size_t>(p)])] +=
+          values[static_cast<std::size_t>(p)] * x[static_cast<std::size_t>(c)];
+  std::vector<double> y(static_cast<std::size_t>(n), 99.0);
+  pattern.multiply(values, x, y);
+  for (std::size_t i = 0; i < y.size(); ++i) EXPECT_EQ(y[i], expected[i]) << i;
 }
 
 TEST(Sparsity, DenseBlockAddsWhatAddGivesEntryByEntry) {
