@@ -61,7 +61,7 @@ class SparsityPattern {
   //! of consecutive rows: a porous cell's 240 x 240 block is one run per column, so the
   //! product reads no row index per entry. GMRES forms two products per Newton iteration
   //! and they stream the whole Jacobian (95 MB of values and indices on the porous
-  //! DustPy disk): the indices were a third of that traffic.
+  //! DustPy disk): the indices were half of that traffic.
   void multiply(std::span<const double> values, std::span<const double> x,
                 std::span<double> y) const;
   //! Where each column's diagonal entry sits in the value array, column by column (the
@@ -77,8 +77,8 @@ class SparsityPattern {
   };
   long n_ = 0;
   std::vector<sunindextype> col_ptr_, row_index_;
-  std::vector<std::size_t>
-      run_ptr_;  // column c's runs: runs_[run_ptr_[c] .. run_ptr_[c+1])
+  //! Column c's runs are runs_[run_ptr_[c]] .. runs_[run_ptr_[c + 1] - 1].
+  std::vector<std::size_t> run_ptr_;
   std::vector<RowRun> runs_;
 };
 
