@@ -96,6 +96,35 @@ std::string physics_choices(const Config& cfg) {
   return s.str();
 }
 
+// Direct coagulation converts a distribution's bins above St_pl (spec §15.4), but the
+// mass grid ends at model.m_max_g (DustPy's 1e5 g by default), and products beyond it do
+// not stick: where even its last bin is below St_pl, no bin converts, silently. A bin's
+// largest St is its compact one (a lower phi lowers St in both drag regimes, spec §2),
+// taken with the gas at the start.
+std::string unreachable_st_pl_warning(const Config& cfg, const Grid& grid,
+                                      const SizeDistribution* dist) {
+  if (!dist || !cfg.flag("planetesimals.coagulation")) return "";
+  const int top = dist->n_bins() - 1;
+  double st_top = 0.0;
+  int where = 0;
+  for (int i = 0; i < grid.n_cells(); ++i)
+    if (const double st = dist->bin_stokes(i, top, 1.0); st > st_top) {
+      st_top = st;
+      where = i;
+    }
+  const double st_pl = cfg.real("planetesimals.St_pl");
+  if (st_top >= st_pl) return "";
+  std::ostringstream s;
+  s << "WARNING: no bin can reach planetesimals.St_pl = " << st_pl
+    << ", so planetesimals.coagulation converts nothing: the mass grid ends at "
+    << dist->mass_grid().m[static_cast<std::size_t>(top)]
+    << " g (model.m_max_g = " << cfg.real("model.m_max_g")
+    << "), whose compact St is at most " << st_top << " (at " << grid.r_c(where) / kAu
+    << " au, the gas at the start); raise model.m_max_g (porous ice on the MMSN reaches "
+       "St = 10 near 1e12 g)\n";
+  return s.str();
+}
+
 }  // namespace
 
 std::string Simulation::summary() const {
@@ -181,6 +210,7 @@ std::string Simulation::summary() const {
     s << "WARNING: output.n_snapshots = " << cfg_.integer("output.n_snapshots")
       << " with output.t_first_yr = t_end_yr = " << cfg_.real("output.t_end_yr")
       << " yr: one snapshot after t = 0; lower t_first_yr for more\n";
+  s << unreachable_st_pl_warning(cfg_, grid_, distribution_);
   if (growth_) {  // spec §0: the contact mechanics behind the collision parameters
     s << physics::contact_summary("ice", material_from_config(cfg_, "ice")) << "\n";
     s << physics::contact_summary("silicate", material_from_config(cfg_, "sil")) << "\n";

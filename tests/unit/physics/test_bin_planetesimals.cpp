@@ -1,9 +1,10 @@
 // Planetesimal formation per mass bin in the size-distribution mode (spec §15.4, §7;
 // physics/modules/bin_planetesimals.*): the dust of one bin converts at the single-size
 // rate (direct coagulation: the law of a growing particle; d16: the single-size module
-// of the same St, through its trigger's switch), bins below St_pl do not convert, psi_k
-// loses the fraction sigma_k loses, the budget closes in a run that converts, and the
-// Jacobian, compact and porous, against finite differences.
+// of the same St, through its trigger's switch), bins below St_pl do not convert, a run
+// whose last bin cannot reach St_pl says so, psi_k loses the fraction sigma_k loses, the
+// budget closes in a run that converts, and the Jacobian, compact and porous, against
+// finite differences.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -73,6 +74,32 @@ TEST(BinPlanetesimals, AcceptedWithTheDistributionButZcritIsRefused) {
   // a channel that is off owns no variable
   Simulation coag_only(small_scene({"planetesimals.coagulation=true"}));
   EXPECT_FALSE(coag_only.model().layout().find_cell_var("sigma_pl_si"));
+}
+
+// A mass grid whose last bin stays below St_pl converts nothing by direct coagulation:
+// the run says so (distribution_small ends at 100 g). The threshold is the last bin's
+// largest compact St over the cells: St_pl just above it warns, just below it does not.
+TEST(BinPlanetesimals, TheRunWarnsWhenNoBinCanReachStPl) {
+  const std::string warning = "WARNING: no bin can reach planetesimals.St_pl";
+  const Simulation sim(small_scene({"planetesimals.coagulation=true"}));
+  EXPECT_NE(sim.summary().find(warning), std::string::npos) << sim.summary();
+  EXPECT_NE(sim.summary().find("model.m_max_g = 100"), std::string::npos);
+  const auto* d = sim.distribution();
+  double st_top = 0.0;
+  for (int i = 0; i < sim.grid().n_cells(); ++i)
+    st_top = std::max(st_top, d->bin_stokes(i, d->n_bins() - 1, 1.0));
+  ASSERT_GT(st_top, 0.0);
+  ASSERT_LT(st_top, 10.0);
+  const auto with_st_pl = [&](double st_pl) {
+    return Simulation(small_scene({"planetesimals.coagulation=true",
+                                   "planetesimals.St_pl=" + std::to_string(st_pl)}))
+        .summary();
+  };
+  EXPECT_NE(with_st_pl(1.01 * st_top).find(warning), std::string::npos);
+  EXPECT_EQ(with_st_pl(0.99 * st_top).find(warning), std::string::npos);
+  // only direct coagulation has the threshold: SI alone does not warn
+  EXPECT_EQ(Simulation(small_scene({"planetesimals.si=\"d16\""})).summary().find(warning),
+            std::string::npos);
 }
 
 // All the dust of a cell in one bin: direct coagulation converts it at the single-size
