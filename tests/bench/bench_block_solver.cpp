@@ -8,7 +8,8 @@
 // the product J b (GMRES's) by runs of rows against entry by entry.
 // Usage: build/tests/bench_block_solver SCENE [--t-yr T] [--gamma-yr G] [--reps R]
 //        [--set key=value ...]
-// Results: tests/bench/results/block_solver.md.
+// Results: tests/bench/results/block_solver.md (the product: porous_cost.md, "GMRES's
+// product J v over runs of rows").
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_klu.h>
