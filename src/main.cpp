@@ -124,6 +124,9 @@ int run_command_line(int argc, char** argv) {
   run_cmd->add_option("--max-wall", args.max_wall,
                       "stop with a checkpoint (exit code 75) before this wall time, "
                       "e.g. 90m, 2h, 1h30m, 3600s");
+  run_cmd->add_option("--threads", args.threads,
+                      "worker threads sharing the size distribution's cells (default 1); "
+                      "the results are the same to the bit for any number");
   run_cmd->add_option("--progress", args.progress,
                       "when stdout is not a terminal (a batch job's log), print a line "
                       "of progress (time, steps, wall time, ETA) every INTERVAL, e.g. "

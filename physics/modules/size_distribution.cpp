@@ -6,6 +6,7 @@
 
 #include "physics/modules/porous_growth.hpp"
 #include "physics/particle.hpp"
+#include "src/core/worker_threads.hpp"
 
 namespace panoptic {
 
@@ -97,10 +98,10 @@ void SizeDistribution::build_cell(int cell, const physics::LocalGas& gas) const 
 void SizeDistribution::refresh(std::span<const double> y) const {
   if (!gas_.evolves()) return;
   st_state_.clear();  // build_cell() sets the compact St of the new gas
-  for (int i = 0; i < grid_.n_cells(); ++i) {
+  for (int i = 0; i < grid_.n_cells(); ++i)
     gas_now_[i] = cell_gas_.at(i, &y[layout_.index(i, 0)]);
-    build_cell(i, gas_now_[i]);
-  }
+  // each cell writes its own St and coefficients
+  parallel_for(grid_.n_cells(), [&](int i, int) { build_cell(i, gas_now_[i]); });
 }
 
 double SizeDistribution::phi(int cell, int k, std::span<const double> y) const {
@@ -114,44 +115,52 @@ coag::BinPorosity SizeDistribution::porosity(int cell, int k,
                             y[layout_.index(cell, psi_slot(k))], empty_scale_);
 }
 
+std::vector<SizeDistribution::WorkerScratch>& SizeDistribution::workers() const {
+  const auto n = static_cast<std::size_t>(worker_threads());
+  while (workers_.size() < n) workers_.push_back({engine_, {}, {}, {}, {}});
+  return workers_;
+}
+
 void SizeDistribution::update_stokes(int cell, std::span<const double> y,
-                                     bool derivatives) const {
+                                     bool derivatives, WorkerScratch& w) const {
   const int nb = n_bins_;
-  std::vector<double>& phi_k = phi_scratch_;
+  std::vector<double>& phi_k = w.phi;
   phi_k.resize(nb);
-  const coag::BinProperties& bins = bins_scratch_;
+  const coag::BinProperties& bins = w.bins;
   const physics::LocalGas& gas = gas_now_[cell];
   const double rho0 = species_[cell].rho0;
   for (int k = 0; k < nb; ++k) phi_k[k] = phi(cell, k, y);
-  coag::bin_properties(engine_.grid(), phi_k, rho0, gas, opt_.growth.drag, bins_scratch_);
+  coag::bin_properties(engine_.grid(), phi_k, rho0, gas, opt_.growth.drag, w.bins);
   const std::size_t off = static_cast<std::size_t>(cell) * nb;
   std::copy(bins.St.begin(), bins.St.end(),
             st_.begin() + static_cast<std::ptrdiff_t>(off));
   if (!derivatives) return;
   // d St / d ln u by the forward difference of cell_coefficients, on the perturbed bins
   // it is then given
-  coag::perturbed_bins(engine_.grid().m, phi_k, rho0, gas, opt_.growth.drag,
-                       perturbed_scratch_);
+  coag::perturbed_bins(engine_.grid().m, phi_k, rho0, gas, opt_.growth.drag, w.perturbed);
   for (int k = 0; k < nb; ++k)
-    dst_dlnu_[off + k] = (perturbed_scratch_.st[k] - bins.St[k]) / coag::kLnUStep;
+    dst_dlnu_[off + k] = (w.perturbed.st[k] - bins.St[k]) / coag::kLnUStep;
 }
 
 void SizeDistribution::update_porous(std::span<const double> y, bool coefficients,
                                      bool derivatives) const {
   const int nb = n_bins_;
   workspace_.resize(grid_.n_cells());
+  std::vector<WorkerScratch>& ws = workers();
   // the St of this state may have been computed already (bin_stokes_numbers); the
   // Jacobian's d St / d ln u are computed with them
   const bool stokes = derivatives || !std::ranges::equal(y, st_state_);
-  for (int i = 0; i < grid_.n_cells(); ++i) {
-    if (stokes) update_stokes(i, y, derivatives);
-    if (!coefficients || !opt_.coagulation) continue;
+  // each cell writes its own St, d St / d ln u, workspace and coefficients
+  parallel_for(grid_.n_cells(), [&](int i, int worker) {
+    WorkerScratch& w = ws[static_cast<std::size_t>(worker)];
+    if (stokes) update_stokes(i, y, derivatives, w);
+    if (!coefficients || !opt_.coagulation) return;
     const long base = layout_.index(i, slot0_);
     coef_[i] = coag::cell_coefficients(
         engine_, y.subspan(base, nb), y.subspan(base + nb, nb), gas_now_[i],
         cell_model(i), derivatives, &workspace_[i], std::move(coef_[i]),
-        derivatives ? &perturbed_scratch_ : nullptr);
-  }
+        derivatives ? &w.perturbed : nullptr);
+  });
   if (stokes) st_state_.assign(y.begin(), y.end());
 }
 
@@ -360,16 +369,18 @@ void SizeDistribution::add_rhs(double, std::span<const double> y,
                                std::span<double> ydot) const {
   add_transport(y, ydot);  // porous: rebuilds the coefficients from y
   if (!opt_.coagulation) return;
-  const int n = grid_.n_cells(), nb = n_bins_, nv = cell_vars();
-  scratch_.resize(nv);
-  const std::span<double> out(scratch_);
-  for (int i = 0; i < n; ++i) {
+  const int nb = n_bins_, nv = cell_vars();
+  std::vector<WorkerScratch>& ws = workers();
+  parallel_for(grid_.n_cells(), [&](int i, int worker) {
+    WorkerScratch& w = ws[static_cast<std::size_t>(worker)];
+    w.out.resize(nv);
+    const std::span<double> out(w.out);
     const long base = layout_.index(i, slot0_);
-    engine_.rhs(coef_[i], y.subspan(base, nb),
-                porous_ ? y.subspan(base + nb, nb) : std::span<const double>{},
-                out.first(nb), porous_ ? out.subspan(nb) : std::span<double>{});
-    for (int k = 0; k < nv; ++k) ydot[base + k] += scratch_[k];
-  }
+    w.engine.rhs(coef_[i], y.subspan(base, nb),
+                 porous_ ? y.subspan(base + nb, nb) : std::span<const double>{},
+                 out.first(nb), porous_ ? out.subspan(nb) : std::span<double>{});
+    for (int k = 0; k < nv; ++k) ydot[base + k] += out[k];
+  });
 }
 
 void SizeDistribution::add_jacobian(double, std::span<const double> y,
@@ -441,14 +452,17 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
   }
   if (!opt_.coagulation) return;
   const int nv = cell_vars();
-  scratch_.resize(static_cast<std::size_t>(nv) * nv);
-  for (int i = 0; i < n; ++i) {
+  std::vector<WorkerScratch>& ws = workers();
+  // each cell's block goes to its own entries of jac
+  parallel_for(n, [&](int i, int worker) {
+    WorkerScratch& w = ws[static_cast<std::size_t>(worker)];
+    w.out.resize(static_cast<std::size_t>(nv) * nv);
     const long base = layout_.index(i, slot0_);
-    engine_.jacobian(coef_[i], y.subspan(base, nb),
-                     porous_ ? y.subspan(base + nb, nb) : std::span<const double>{},
-                     scratch_);
-    jac.add_dense_block(base, nv, scratch_);
-  }
+    w.engine.jacobian(coef_[i], y.subspan(base, nb),
+                      porous_ ? y.subspan(base + nb, nb) : std::span<const double>{},
+                      w.out);
+    jac.add_dense_block(base, nv, w.out);
+  });
 }
 
 std::vector<double> SizeDistribution::mass_flow(std::span<const double> y) const {

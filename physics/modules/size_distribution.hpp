@@ -178,6 +178,16 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
                     JacobianValues& jac) const override;
 
  private:
+  //! What one worker thread (src/core/worker_threads.hpp) works on a cell with.
+  struct WorkerScratch {
+    //! a copy of engine_, for its own buffers (the engine's are not shared)
+    physics::coagulation::Smoluchowski engine;
+    std::vector<double> out;                        //!< the engine's rates or block
+    std::vector<double> phi;                        //!< porous, per bin
+    physics::coagulation::BinProperties bins;       //!< porous, per bin
+    physics::coagulation::PerturbedBins perturbed;  //!< porous Jacobian
+  };
+
   //! The coefficients and St of every bin of `cell` from its gas (compact).
   void build_cell(int cell, const physics::LocalGas& gas) const;
   //! The outcome model of `cell`'s species (DustPy's, with erosion Krijt et al.'s on the
@@ -189,9 +199,10 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! computed again for the state of st_state_ (without `derivatives`).
   void update_porous(std::span<const double> y, bool coefficients,
                      bool derivatives) const;
-  //! Porous: St (and with `derivatives` d St/d ln u, and the perturbed bins of
-  //! perturbed_scratch_) of the bins of `cell` at state y.
-  void update_stokes(int cell, std::span<const double> y, bool derivatives) const;
+  //! Porous: St (and with `derivatives` d St/d ln u, and the perturbed bins in
+  //! w.perturbed) of the bins of `cell` at state y.
+  void update_stokes(int cell, std::span<const double> y, bool derivatives,
+                     WorkerScratch& w) const;
 
   //! A row that the flow through a face feeds: ydot[row] += weight * flow / divisor.
   struct FlowTarget {
@@ -237,12 +248,11 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! porous, Jacobian: d St / d ln u of every bin [cell * N + k]
   mutable std::vector<double> dst_dlnu_;
   mutable std::vector<physics::LocalGas> gas_now_;  //!< per cell, of the last refresh
-  mutable std::vector<double> scratch_;
   //! porous, per cell: what cell_coefficients reuses from call to call
   mutable std::vector<physics::coagulation::CoefficientWorkspace> workspace_;
-  mutable std::vector<double> phi_scratch_;                        //!< porous, per bin
-  mutable physics::coagulation::BinProperties bins_scratch_;       //!< porous, per bin
-  mutable physics::coagulation::PerturbedBins perturbed_scratch_;  //!< porous Jacobian
+  mutable std::vector<WorkerScratch> workers_;
+  //! workers_, one per worker thread
+  std::vector<WorkerScratch>& workers() const;
 };
 
 }  // namespace panoptic

@@ -32,6 +32,7 @@ std::string restart_command(const RunArgs& a, const fs::path& chk) {
                     quote(chk.string());
   for (const std::string& s : a.overrides) cmd += " --set " + quote(s);
   if (!a.output.empty()) cmd += " -o " + quote(a.output);
+  if (a.threads > 1) cmd += " --threads " + std::to_string(a.threads);
   return cmd;
 }
 

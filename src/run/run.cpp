@@ -17,6 +17,7 @@
 #include "src/core/signals.hpp"
 #include "src/core/units.hpp"
 #include "src/core/wall_clock.hpp"
+#include "src/core/worker_threads.hpp"
 #include "src/io/checkpoint.hpp"
 #include "src/io/run_output.hpp"
 #include "src/model/scene_validation.hpp"
@@ -52,6 +53,12 @@ int run_scene(const RunArgs& a) {
   // arrived meanwhile is delivered here.
   install_stop_handlers(SecondStop::kUnlessFromParent);
   block_stop_signals(false);
+  if (a.threads < 1)
+    throw ConfigError("--threads " + std::to_string(a.threads) +
+                      ": the number of worker threads must be at least 1; give "
+                      "--threads 1 (the default) or the number of cores to share the "
+                      "cells among");
+  set_worker_threads(a.threads);
   // the scene: the file, or with --restart alone the checkpoint's (read here first)
   std::optional<RestartPoint> restart;
   if (a.scene.empty()) restart = load_restart_point(a.restart);

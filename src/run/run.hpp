@@ -26,6 +26,8 @@ struct RunArgs {
   //! where `progress` came from, for its error message: "--progress" or
   //! "PANOPTIC_PROGRESS="
   std::string progress_source = "--progress";
+  //! --threads N: the worker threads that share the cells (src/core/worker_threads.hpp)
+  int threads = 1;
 };
 
 //! Runs the scene; returns the exit code (0, or exit_codes::kStopped when stopped with a

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "src/core/worker_threads.hpp"
+
 namespace panoptic {
 namespace {
 
@@ -99,10 +101,19 @@ bool BlockBandedLU::factorize(std::span<const double> values) {
   g_.setZero();
   for (std::size_t p = 0; p < destination_.size(); ++p) *destination_[p] = values[p];
 
+  if (w_ == 0) {
+    // independent blocks (the GMRES preconditioner's): factorised by the worker threads
+    std::vector<char> ok(static_cast<std::size_t>(n_), 0);
+    parallel_for(n_, [&](int k, int) {
+      pivots_[k].compute(block(k, k));
+      ok[static_cast<std::size_t>(k)] = usable(pivots_[k]);
+    });
+    if (std::ranges::find(ok, 0) != ok.end()) return false;
+  }
   // Block Gaussian elimination (right-looking): at step k the blocks of row k and of
   // column k are final; U_kj <- D_k^-1 U_kj, then A_ij -= A_ik (D_k^-1 U_kj) for the
   // rows i and columns j within the band below and right of k.
-  for (int k = 0; k < n_; ++k) {
+  for (int k = 0; w_ > 0 && k < n_; ++k) {
     pivots_[k].compute(block(k, k));
     if (!usable(pivots_[k])) return false;
     const int last = std::min(n_ - 1, k + w_);
@@ -143,9 +154,20 @@ void BlockBandedLU::subtract_lower_product(int i, int j,
 
 bool BlockBandedLU::solve(std::span<double> x) const {
   Eigen::Map<Eigen::VectorXd> v(x.data(), static_cast<Eigen::Index>(x.size()));
+  if (w_ == 0) {
+    // independent blocks: x_k = D_k^-1 b_k by the worker threads, each with its scratch
+    const auto threads = static_cast<std::size_t>(worker_threads());
+    if (worker_scratch_.size() < threads) worker_scratch_.resize(threads);
+    parallel_for(n_, [&](int k, int worker) {
+      Eigen::VectorXd& s = worker_scratch_[static_cast<std::size_t>(worker)];
+      auto xk = v.segment(static_cast<Eigen::Index>(k) * b_, b_);
+      s = pivots_[k].solve(xk);
+      xk = s;
+    });
+  }
   // Forward: y_k = D_k^-1 (b_k - sum_i A_ki y_i), the rows below updated as each y_k is
   // known; backward: x_k = y_k - sum_j (D_k^-1 U_kj) x_j.
-  for (int k = 0; k < n_; ++k) {
+  for (int k = 0; w_ > 0 && k < n_; ++k) {
     auto xk = v.segment(static_cast<Eigen::Index>(k) * b_, b_);
     scratch_.head(b_) = pivots_[k].solve(xk);
     xk = scratch_.head(b_);

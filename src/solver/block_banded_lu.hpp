@@ -95,6 +95,8 @@ class BlockBandedLU {
   Matrix scratch_block_;
   Eigen::PartialPivLU<Matrix> g_lu_;
   mutable Eigen::VectorXd scratch_;
+  //! bandwidth 0: one solve vector per worker thread (src/core/worker_threads.hpp)
+  mutable std::vector<Eigen::VectorXd> worker_scratch_;
 };
 
 }  // namespace panoptic

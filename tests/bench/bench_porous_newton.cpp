@@ -17,7 +17,8 @@
 //   the step) at the start and at the last iterate;
 // * the largest entries of h (J - J_fd) in the error weights' units, by variable.
 // Usage: build/tests/bench_porous_newton SCENE [--set key=value ...] [--probe N]
-//        [--every K] (probe every K-th failure)
+//        [--every K] (probe every K-th failure) [--threads T] (worker threads,
+//        src/core/worker_threads.hpp: the CPU time is then that of all threads)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -28,6 +29,7 @@
 
 #include "physics/modules/size_distribution.hpp"
 #include "src/core/units.hpp"
+#include "src/core/worker_threads.hpp"
 #include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/block_banded_lu.hpp"
@@ -292,8 +294,9 @@ void analyse(const Simulation& sim, const Probe& pr, const IntegratorOptions& op
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s SCENE [--set k=v ...] [--probe N] [--every K]\n",
-                 argv[0]);
+    std::fprintf(
+        stderr, "usage: %s SCENE [--set k=v ...] [--probe N] [--every K] [--threads T]\n",
+        argv[0]);
     return 2;
   }
   std::vector<std::string> sets;
@@ -309,6 +312,8 @@ int main(int argc, char** argv) {
       every = std::stoi(argv[i + 1]);
     else if (a == "--limiting")
       count_limiting = std::stoi(argv[i + 1]) != 0;
+    else if (a == "--threads")
+      set_worker_threads(std::stoi(argv[i + 1]));
   }
   Simulation sim(load_scene(argv[1], sets));
   const IntegratorOptions opt = sim.integrator_options();
