@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "src/core/worker_threads.hpp"
+
 namespace panoptic {
 
 void PatternBuilder::compact() {
@@ -75,17 +77,24 @@ void SparsityPattern::copy_structure_to(sunindextype* colptrs,
 
 void SparsityPattern::multiply(std::span<const double> values, std::span<const double> x,
                                std::span<double> y) const {
-  std::fill(y.begin(), y.end(), 0.0);
-  const double* v = values.data();
-  for (std::size_t c = 0; c < static_cast<std::size_t>(n_); ++c) {
-    const double xc = x[c];
-    for (std::size_t r = run_ptr_[c]; r < run_ptr_[c + 1]; ++r) {
-      double* yr = y.data() + runs_[r].first_row;
-      const auto length = runs_[r].length;
-      for (sunindextype k = 0; k < length; ++k) yr[k] += v[k] * xc;
-      v += length;
+  // Worker threads (src/core/worker_threads.hpp) take bands of rows: each goes through
+  // every column in order and adds the part of its runs that falls in its band, so that
+  // each y_r is summed over the same columns in the same order as on one thread.
+  const int bands = worker_threads();
+  parallel_for(bands, [&](int band, int) {
+    const sunindextype lo = n_ * band / bands, hi = n_ * (band + 1) / bands;
+    std::fill(y.begin() + lo, y.begin() + hi, 0.0);
+    for (std::size_t c = 0; c < static_cast<std::size_t>(n_); ++c) {
+      const double xc = x[c];
+      const double* v = values.data() + col_ptr_[c];
+      for (std::size_t r = run_ptr_[c]; r < run_ptr_[c + 1]; ++r) {
+        const sunindextype first = runs_[r].first_row, length = runs_[r].length;
+        const sunindextype from = std::max(first, lo), to = std::min(first + length, hi);
+        for (sunindextype k = from; k < to; ++k) y[k] += v[k - first] * xc;
+        v += length;
+      }
     }
-  }
+  });
 }
 
 std::vector<std::size_t> SparsityPattern::diagonal_positions() const {

@@ -61,7 +61,8 @@ class SparsityPattern {
   //! of consecutive rows: a porous cell's 240 x 240 block is one run per column, so the
   //! product reads no row index per entry. GMRES forms two products per Newton iteration
   //! and they stream the whole Jacobian (95 MB of values and indices on the porous
-  //! DustPy disk): the indices were half of that traffic.
+  //! DustPy disk): the indices were half of that traffic. With worker threads
+  //! (src/core/worker_threads.hpp) each takes a band of rows, with the same sums.
   void multiply(std::span<const double> values, std::span<const double> x,
                 std::span<double> y) const;
   //! Where each column's diagonal entry sits in the value array, column by column (the

@@ -1,8 +1,8 @@
 // The worker threads of `panoptic run --threads N` (src/core/worker_threads.hpp):
 // parallel_for visits every index once and hands an exception back, and the cell-local
 // work they share (the porous size distribution's coefficients, engine rates and
-// Jacobian blocks, the GMRES preconditioner's cell blocks) gives the same bits on any
-// number of threads.
+// Jacobian blocks, the GMRES preconditioner's cell blocks, the product J v by bands of
+// rows) gives the same bits on any number of threads.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -69,14 +69,14 @@ TEST(WorkerThreads, AnExceptionOfOneCallIsRethrownOnceAllHaveRun) {
 }
 
 // The porous distribution scene (50 bins, 12 cells) at a state with every bin filled and
-// u from 1 to ~1e3: its right-hand side, Jacobian and preconditioner solve on 1 and on 3
-// threads.
+// u from 1 to ~1e3: its right-hand side, Jacobian, J y and preconditioner solve on 1 and
+// on 3 threads.
 TEST(WorkerThreads, PorousDistributionGivesTheSameBitsOnAnyNumberOfThreads) {
   const std::vector<std::string> sets{"porosity.enabled=true"};
   const Config cfg = load_scene(
       std::string(PANOPTIC_SOURCE_DIR) + "/params/tests/distribution_small.toml", sets);
   struct Result {
-    std::vector<double> ydot, jac, solved;
+    std::vector<double> ydot, jac, product, solved;
   };
   auto evaluate = [&](int threads) {
     const ThreadsGuard guard(threads);
@@ -96,6 +96,8 @@ TEST(WorkerThreads, PorousDistributionGivesTheSameBitsOnAnyNumberOfThreads) {
     model.rhs(0.0, y, r.ydot);
     r.jac.assign(static_cast<std::size_t>(model.pattern().nnz()), 0.0);
     model.jacobian(0.0, y, r.jac);
+    r.product.assign(y.size(), 0.0);  // J y, GMRES's product, by bands of rows
+    model.pattern().multiply(r.jac, y, r.product);
     CellBlockPreconditioner pre(model.pattern(), layout.n_cells(), layout.n_cell_vars());
     EXPECT_TRUE(pre.setup(r.jac, 10.0 * units::kYr));
     r.solved = r.ydot;
@@ -108,6 +110,7 @@ TEST(WorkerThreads, PorousDistributionGivesTheSameBitsOnAnyNumberOfThreads) {
     const Result three = evaluate(3);
     EXPECT_TRUE(same_bits(one.ydot, three.ydot)) << repeat;
     EXPECT_TRUE(same_bits(one.jac, three.jac)) << repeat;
+    EXPECT_TRUE(same_bits(one.product, three.product)) << repeat;
     EXPECT_TRUE(same_bits(one.solved, three.solved)) << repeat;
   }
   // the state is one where the work matters: rates and couplings are not all zero
