@@ -4,9 +4,9 @@
 //! side and Jacobian per cell, the preconditioner's cell blocks) is shared among them
 //! cell by cell with parallel_for. Each cell's arithmetic is the same whichever thread
 //! does it, in the same order, and each writes only its own cell's entries: the results
-//! are identical to the bit for every thread count (tests/regression/
-//! test_worker_threads.py, `WorkerThreads.*`). Default 1: a scan runs its runs as
-//! separate jobs, each on one core.
+//! are identical to the bit for every thread count (regression.test_worker_threads,
+//! `WorkerThreads.*`). Default 1: a scan runs its runs as separate jobs, each on one
+//! core.
 #include <exception>
 
 #ifdef _OPENMP
@@ -23,7 +23,9 @@ int worker_threads();
 //! Calls body(i, worker) for i = 0 .. n - 1, worker in [0, worker_threads()): the
 //! worker's index, for its own scratch space. The calls run on worker_threads() threads
 //! (one thread: in order, on the caller's). An exception a call throws is rethrown here
-//! once every call has returned (the first to be caught, when several throw).
+//! once every call has returned (the first to be caught, when several throw). Not to be
+//! nested: a body that called parallel_for would hand out worker indices its caller's
+//! workers hold.
 template <class Body>
 void parallel_for(int n, Body&& body) {
   const int threads = worker_threads();
