@@ -202,6 +202,8 @@ int run_command_line(int argc, char** argv) {
                        "unless --dry-run");
   scan_cmd->add_option("-j,--jobs", scan_opts.jobs, "runs at once (per MPI rank)")
       ->capture_default_str();
+  scan_cmd->add_option("--threads", scan_opts.threads,
+                       "worker threads of each run (panoptic run --threads; default 1)");
   std::string task_text;
   auto* task_opt =
       scan_cmd->add_option("--task", task_text, "run only manifest entry I (job arrays)");

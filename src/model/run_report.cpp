@@ -11,6 +11,7 @@
 #include "physics/stokes_model.hpp"
 #include "src/core/error.hpp"
 #include "src/core/units.hpp"
+#include "src/core/worker_threads.hpp"
 #include "src/model/scene_to_physics.hpp"
 #include "src/model/simulation.hpp"
 
@@ -190,6 +191,10 @@ std::string Simulation::summary() const {
     s << "Newton systems solved by " << linear_solver_name(linear_solver())
       << " (solver.linear" << (cfg_.str("solver.linear") == "auto" ? " = auto" : "")
       << ")\n";
+  if (worker_threads() > 1)
+    s << "worker threads: " << worker_threads()
+      << " (--threads: they share the size distribution's cells; the results do not "
+         "depend on their number)\n";
   s << "initial dust mass: " << dust_mass0_ / units::kMearth << " M_earth";
   // the cells' centre values against the profile's exact mass: second order in the width
   if (std::isfinite(profile_dust_mass_)) {

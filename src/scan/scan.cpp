@@ -146,6 +146,8 @@ Prepared prepare(const ScanOptions& o) {
     for (const std::string& s : p.m.overrides(i))
       t.argv.insert(t.argv.end(), {"--set", s});
     if (!o.progress.empty()) t.argv.insert(t.argv.end(), {"--progress", o.progress});
+    if (o.threads > 1)
+      t.argv.insert(t.argv.end(), {"--threads", std::to_string(o.threads)});
     t.argv.insert(t.argv.end(), {"-o", t.h5, "--overwrite"});  // last: Pool::launch
     p.tasks.push_back(std::move(t));
   }
@@ -504,6 +506,10 @@ bool scan_has_mpi() {
 int run_scan(const ScanOptions& o) {
   if (o.jobs < 1)
     throw ConfigError("-j " + std::to_string(o.jobs) + ": must be >= 1 (runs at once)");
+  if (o.threads < 1)
+    throw ConfigError("--threads " + std::to_string(o.threads) +
+                      ": must be >= 1 (the worker threads of each run); give --threads 1 "
+                      "(the default) or the cores each run may use");
   const int world = launcher_world_size();
   if (world > 1 && (o.dry_run || o.task))
     throw ConfigError(

@@ -21,6 +21,7 @@ struct ScanOptions {
   bool force = false;    //!< replace a manifest that differs
   std::string run_exe;   //!< the panoptic that runs the scenes (default: this one)
   std::string progress;  //!< --progress INTERVAL, passed to every run ("" = none)
+  int threads = 1;  //!< --threads N, passed to every run (src/core/worker_threads.hpp)
 };
 
 //! Returns the exit code: 0 every run complete, 3 some runs failed (recorded in the

@@ -6,11 +6,12 @@ grow: the mass-dominating bin (m, a, St) rises from the MRN start by orders of m
 in the inner disk while sigma_d stays near its initial profile. `panoptic observe` reads
 the run (its opacities of the distribution: regression.test_observe_distribution); the
 van Leer limiter runs it to the end with a closed budget; a
-scan over two distribution runs (disk.alpha) completes both with closed budgets, each
-output holding its own run's bins."""
+scan over two distribution runs (disk.alpha, each on the scan's --threads 2) completes
+both with closed budgets, each output holding its own run's bins."""
 
 import csv
 import os
+import shutil
 
 import numpy as np
 
@@ -68,7 +69,9 @@ def main():
                 'set = ["output.t_end_yr=1e3"]\nsampling = "grid"\n\n'
                 '[[axis]]\nkey = "disk.alpha"\nvalues = [1e-3, 3e-3]\n')
     scan_dir = os.path.join(args.workdir, "distribution_scan")
-    run_checked([args.exe, "scan", scan, "-o", scan_dir, "-j", "1", "--force"])
+    shutil.rmtree(scan_dir, ignore_errors=True)  # runs of an earlier call would be resumed
+    run_checked([args.exe, "scan", scan, "-o", scan_dir, "-j", "1", "--threads", "2",
+                 "--force"])
     with open(os.path.join(scan_dir, "summary.csv")) as f:
         rows = list(csv.DictReader(f))
     c.check(len(rows) == 2 and all(r["status"] == "completed" for r in rows),
@@ -84,6 +87,10 @@ def main():
         with h5py.File(path, "r") as f:
             bins = f["snapshots/sigma"][-1].reshape(n, nb)
         outputs.append(bins)
+        with open(os.path.join(scan_dir, "runs", r["name"] + ".log")) as f:
+            log = f.read()
+        c.check("worker threads: 2 (--threads" in log,
+                f"scan output {r['name']}: its run had the scan's --threads 2")
         c.check(run_out.config["disk"]["alpha"] == alpha and
                 np.allclose(bins.sum(axis=1), run_out.snapshots["sigma_d"][-1], rtol=1e-14,
                             atol=0),
