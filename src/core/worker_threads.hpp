@@ -7,6 +7,7 @@
 //! are identical to the bit for every thread count (regression.test_worker_threads,
 //! `WorkerThreads.*`). Default 1: a scan runs its runs as separate jobs, each on one
 //! core.
+#include <cstddef>
 #include <exception>
 
 #ifdef _OPENMP
@@ -50,6 +51,18 @@ void parallel_for(int n, Body&& body) {
     }
   }
   if (error) std::rethrow_exception(error);
+}
+
+//! Calls body(lo, hi) for worker_threads() consecutive bands [lo, hi) covering [0, n),
+//! each on a worker of its own: for element-wise work (copies, scalings) and for sums
+//! kept in the same order by bands of rows.
+template <class Body>
+void parallel_bands(std::size_t n, Body&& body) {
+  const auto bands = static_cast<std::size_t>(worker_threads());
+  parallel_for(static_cast<int>(bands), [&](int b, int) {
+    const auto band = static_cast<std::size_t>(b);
+    body(n * band / bands, n * (band + 1) / bands);
+  });
 }
 
 }  // namespace panoptic

@@ -97,9 +97,15 @@ BlockBandedLU::BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int b
 }
 
 bool BlockBandedLU::factorize(std::span<const double> values) {
-  for (Matrix& m : blocks_) m.setZero();
+  // zeroed and filled in bands by the worker threads: every entry has a destination of
+  // its own
+  parallel_bands(blocks_.size(), [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t b = lo; b < hi; ++b) blocks_[b].setZero();
+  });
   g_.setZero();
-  for (std::size_t p = 0; p < destination_.size(); ++p) *destination_[p] = values[p];
+  parallel_bands(destination_.size(), [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t p = lo; p < hi; ++p) *destination_[p] = values[p];
+  });
 
   if (w_ == 0) {
     // independent blocks (the GMRES preconditioner's): factorised by the worker threads

@@ -5,6 +5,8 @@
 #include <string>
 #include <utility>
 
+#include "src/core/worker_threads.hpp"
+
 namespace panoptic {
 namespace {
 
@@ -50,8 +52,9 @@ CellBlockPreconditioner::CellBlockPreconditioner(const SparsityPattern& pattern,
 }
 
 bool CellBlockPreconditioner::setup(std::span<const double> jacobian, double gamma) {
-  for (std::size_t q = 0; q < source_.size(); ++q)
-    block_values_[q] = jacobian[source_[q]];
+  parallel_bands(source_.size(), [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t q = lo; q < hi; ++q) block_values_[q] = jacobian[source_[q]];
+  });
   newton_matrix(block_values_, block_diagonal_, gamma, block_values_);
   if (!cells_.factorize(block_values_)) return false;
   for (std::size_t g = 0; g < global_diagonal_.size(); ++g) {

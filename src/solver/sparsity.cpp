@@ -80,9 +80,10 @@ void SparsityPattern::multiply(std::span<const double> values, std::span<const d
   // Worker threads (src/core/worker_threads.hpp) take bands of rows: each goes through
   // every column in order and adds the part of its runs that falls in its band, so that
   // each y_r is summed over the same columns in the same order as on one thread.
-  const int bands = worker_threads();
-  parallel_for(bands, [&](int band, int) {
-    const sunindextype lo = n_ * band / bands, hi = n_ * (band + 1) / bands;
+  parallel_bands(static_cast<std::size_t>(n_), [&](std::size_t band_lo,
+                                                   std::size_t band_hi) {
+    const auto lo = static_cast<sunindextype>(band_lo),
+               hi = static_cast<sunindextype>(band_hi);
     std::fill(y.begin() + lo, y.begin() + hi, 0.0);
     for (std::size_t c = 0; c < static_cast<std::size_t>(n_); ++c) {
       const double xc = x[c];
@@ -114,7 +115,10 @@ void newton_matrix(std::span<const double> jacobian,
                    std::span<const std::size_t> diagonal, double c,
                    std::span<double> out) {
   const double minus_c = -c;
-  for (std::size_t k = 0; k < jacobian.size(); ++k) out[k] = minus_c * jacobian[k];
+  // element by element, in bands on the worker threads (src/core/worker_threads.hpp)
+  parallel_bands(jacobian.size(), [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t k = lo; k < hi; ++k) out[k] = minus_c * jacobian[k];
+  });
   // 1 + (-c J_jj) from the product just rounded into out: the same bits as from J, and
   // `out` may alias `jacobian`
   for (const std::size_t k : diagonal) out[k] = 1.0 + out[k];

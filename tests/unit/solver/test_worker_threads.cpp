@@ -1,10 +1,11 @@
 // The worker threads of `panoptic run --threads N` (src/core/worker_threads.hpp):
-// parallel_for visits every index once and hands an exception back, and the cell-local
-// work they share (the porous size distribution's coefficients, engine rates and
-// Jacobian blocks, the GMRES preconditioner's cell blocks, the product J v by bands of
-// rows) gives the same bits on any number of threads.
+// parallel_for visits every index once and hands an exception back, parallel_bands
+// covers a range once, and the cell-local work they share (the porous size distribution's
+// coefficients, engine rates and Jacobian blocks, the GMRES preconditioner's cell blocks,
+// the product J v by bands of rows) gives the same bits on any number of threads.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -50,6 +51,29 @@ TEST(WorkerThreads, ParallelForCallsEveryIndexOnceOnAWorkerOfItsOwn) {
   }
   set_worker_threads(0);  // below 1: one thread
   EXPECT_EQ(worker_threads(), 1);
+}
+
+TEST(WorkerThreads, ParallelBandsCoverTheRangeOnceInOrder) {
+  for (int threads : {1, 3, 7}) {
+    const ThreadsGuard guard(threads);
+    const auto t = static_cast<std::size_t>(threads);
+    for (std::size_t n : {0u, 1u, 5u, 1000u}) {
+      std::vector<int> hits(n, 0);
+      std::atomic<int> calls{0}, of_the_rule{0};
+      parallel_bands(n, [&](std::size_t lo, std::size_t hi) {
+        for (std::size_t k = lo; k < hi; ++k) ++hits[k];
+        ++calls;
+        for (std::size_t b = 0; b < t; ++b)  // band b is [n b / t, n (b + 1) / t)
+          if (lo == n * b / t && hi == n * (b + 1) / t) {
+            ++of_the_rule;
+            break;
+          }
+      });
+      for (std::size_t k = 0; k < n; ++k) EXPECT_EQ(hits[k], 1) << threads << " " << n;
+      EXPECT_EQ(calls.load(), threads) << n;
+      EXPECT_EQ(of_the_rule.load(), threads) << n;
+    }
+  }
 }
 
 TEST(WorkerThreads, AnExceptionOfOneCallIsRethrownOnceAllHaveRun) {
