@@ -28,8 +28,8 @@ struct CellModel {
   GrowthOptions growth;      //!< drag law, b, phi_max, floors on/off, turbulence
   OutcomeSwitches outcomes;  //!< fragmentation and cratering switches and speeds
   //! e of bin_porosity() [g cm^-2]; the default, below any state of the tests, keeps u =
-  //! psi/sigma to the last bit (the distribution mode sets kEmptyBinFraction of its dust
-  //! scale)
+  //! psi/sigma to the last bit (the distribution mode sets its bins' absolute tolerance,
+  //! porosity.hpp)
   double empty_scale = kTinyEmptyScale;
 };
 

@@ -41,14 +41,15 @@ struct BinPorosity {
   double phi() const { return 1.0 / u; }
 };
 
-//! Empty-bin scale of bin_porosity() in units of the largest initial dust surface
-//! density of the run (the scale of CVODE's absolute tolerances) [-]: 100x below the
-//! default absolute tolerance (solver.atol_sigma = 1e-8), so that a bin the integrator
-//! resolves keeps psi/sigma to 1e-2 and better, while the porosity of bins at the
-//! integration noise, whose sigma and psi wander by ~atol about 0, is held near 1. On
-//! the porous MMSN scene to 3 000 yr 1e-10 took fewer steps and Newton failures than
-//! 1e-8 and 1e-12 (tests/bench/results/porous_newton.md).
-inline constexpr double kEmptyBinFraction = 1e-10;
+//! The distribution mode's empty-bin scale e of bin_porosity() is the absolute
+//! tolerance of a bin's mass (solver.atol_sigma times the run's dust scale;
+//! SizeDistributionOptions::empty_bin_fraction): u is then resolved where the bin's mass
+//! is. A bin at e has u halfway between 1 and psi/sigma, as its mass is uncertain by
+//! ~100 %; a bin at 100 e has psi/sigma to 1 %, as its mass to ~1 %. An e below the
+//! tolerance takes at face value the porosity of bins whose mass CVODE does not resolve,
+//! whose psi (u sigma) is then held u times tighter than their sigma: on the porous
+//! DustPy disk at e = 1e-2 atol one such bin (sigma_k ~ 4e-2 atol, u ~ 2 600) set 808 of
+//! 999 steps (tests/bench/results/porous_cost.md, "The empty-bin scale").
 
 //! An empty-bin scale e below any surface density of a test's state [g cm^-2]: (psi +
 //! e)/(sigma + e) is psi/sigma to the last bit, and 1 for an empty bin.
@@ -57,7 +58,7 @@ inline constexpr double kTinyEmptyScale = 1e-300;
 //! The one filling-factor rule of the distribution mode (spec §15.1): u = psi/sigma of a
 //! bin that holds mass, written
 //!   u = max(1, (|psi| + e) / (|sigma| + e)),
-//! with e [g cm^-2] the empty-bin scale (kEmptyBinFraction times the run's dust scale).
+//! with e [g cm^-2] the empty-bin scale (the distribution mode's: above).
 //! u sets a bin's kernel, the voids of its sticking products and its floor; the volume
 //! its collisions move is its own psi in proportion to their mass, whatever u
 //! (smoluchowski.hpp). The rule:

@@ -33,7 +33,7 @@ SizeDistribution::SizeDistribution(StateLayout& layout, const Grid& grid,
       porous_(options.growth.porosity),
       n_bins_(engine_.size()),
       mass_unit_(dust_mass),
-      empty_scale_(coag::kEmptyBinFraction * sigma_scale) {
+      empty_scale_(options.empty_bin_fraction * sigma_scale) {
   layout.allow_wide_cells();
   for (int k = 0; k < n_bins_; ++k) {
     // no >= 0 constraint, as Sigma_d of the single-size model (dust_transport.cpp says

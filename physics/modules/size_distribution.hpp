@@ -30,8 +30,8 @@
 //! derivatives; forward differences of 1e-6), and the face flows' dependence on u through
 //! St (d St/d ln u by the same forward difference), and the compaction floors' levels and
 //! relaxation rates (cell_coefficients). A bin's u is bin_porosity()'s
-//! (physics/coagulation/porosity.hpp), with the empty-bin scale kEmptyBinFraction of
-//! sigma_scale.
+//! (physics/coagulation/porosity.hpp), with the empty-bin scale
+//! options.empty_bin_fraction of sigma_scale: the bins' absolute tolerance.
 //!
 //! Snow line (spec §1.7, §6.3, §15.4; set_snowline()): every cell coagulates with its
 //! own monomer species (silicate inside r_snow, ice outside, as the single-size model),
@@ -71,6 +71,9 @@ struct SizeDistributionOptions {
   bool mrn = true;                //!< initial MRN distribution, else monomers
   double a_max_init = 1e-4;       //!< MRN: largest initial radius [cm]
   physics::GrowthOptions growth;  //!< drag law, turbulence, fragmentation switch
+  //! the empty-bin scale e of bin_porosity() in units of sigma_scale: the bins' absolute
+  //! tolerance, solver.atol_sigma (physics/coagulation/porosity.hpp says why) [-]
+  double empty_bin_fraction = 1e-8;
 };
 
 class SizeDistribution : public PhysicsModule, public DustCarrier {

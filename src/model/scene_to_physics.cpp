@@ -174,4 +174,19 @@ PlanetesimalOptions planetesimal_options_from_config(const Config& cfg) {
   return po;
 }
 
+double atol_sigma_from_config(const Config& cfg) {
+  const double set = cfg.real("solver.atol_sigma");
+  if (set > 0.0) return set;
+  // 0 = by model. A porous distribution resolves its bins' porosity down to this mass
+  // (the empty-bin scale of physics/coagulation/porosity.hpp): at 1e-8 the porous
+  // DustPy disk spent most of its steps on the volume of bins of unresolved mass, at
+  // 1e-10 it takes 0.45x the CPU, and the porous MMSN 1.08x, both closer to a reference
+  // at rtol 1e-5 (tests/bench/results/porous_cost.md, "The empty-bin scale"). The rest
+  // keep 1e-8 (single size: performance_log.md, 45306ca; compact distributions: the
+  // DustPy comparison, dustpy_anchor.md).
+  const bool porous_distribution =
+      cfg.str("model.kind") == "distribution" && cfg.flag("porosity.enabled");
+  return porous_distribution ? 1e-10 : 1e-8;
+}
+
 }  // namespace panoptic

@@ -31,5 +31,8 @@ physics::GrowthOptions growth_options_from_config(const Config& cfg);
 DustTransportOptions transport_options_from_config(const Config& cfg);
 //! The planetesimal channels and their parameters (keys planetesimals.*, spec §7).
 PlanetesimalOptions planetesimal_options_from_config(const Config& cfg);
+//! The absolute tolerance of the surface densities relative to the largest initial
+//! Sigma_d (solver.atol_sigma, its 0 resolved by model) [-].
+double atol_sigma_from_config(const Config& cfg);
 
 }  // namespace panoptic

@@ -16,6 +16,7 @@
 #include "src/core/units.hpp"
 #include "src/model/initial_state.hpp"
 #include "src/model/module_registry.hpp"
+#include "src/model/scene_to_physics.hpp"
 #include "src/solver/block_banded_lu.hpp"
 
 namespace panoptic {
@@ -65,7 +66,7 @@ Simulation::Simulation(const Config& cfg)
   // cells inside the snow line) drove their m and phi between monomers and planetesimals
   // and CVODE's steps down to seconds (fiducial with 4096 cells, M_* = 3 M_sun,
   // dust_to_gas = 0.1 failed; the fiducial run needs 17% fewer steps with 10 atol).
-  codec_->eps_sigma = 10.0 * cfg.real("solver.atol_sigma") * sigma_d_max;
+  codec_->eps_sigma = 10.0 * atol_sigma_from_config(cfg) * sigma_d_max;
 
   // Stokes number: from the particles of the growth model (spec §2), or prescribed.
   const bool growth = cfg.flag("growth.enabled");
@@ -200,7 +201,7 @@ IntegratorOptions Simulation::integrator_options() const {
   o.linear = linear_solver();
   if (o.linear == LinearSolverKind::gmres) o.invariant = budget_weights();
   const auto& L = *layout_;
-  const double atol = cfg_.real("solver.atol_sigma");
+  const double atol = atol_sigma_from_config(cfg_);
   o.atol.resize(L.size());
   o.constraints.resize(L.size());
   for (long i = 0; i < L.size(); ++i) {

@@ -49,11 +49,14 @@ std::vector<KeySpec> solver_keys() {
                 0.0, true, 10.0, false)),
       real("solver.rtol", "1e-6", "", "CVODE relative tolerance", 1e-14, false, 0.1,
            false),
-      real("solver.atol_sigma", "1e-8", "",
+      real("solver.atol_sigma", "0.0", "",
            "absolute tolerance of Sigma_d and Sigma_g, relative to the initial maximum "
            "of Sigma (so it scales with the scene); 10x it is also the Sigma_d below "
-           "which a cell's m and phi are decoded towards a monomer's",
-           1e-30, false, 1.0, false),
+           "which a cell's m and phi are decoded towards a monomer's, and in a porous "
+           "distribution the mass below which a bin's porosity is taken as unresolved; "
+           "0 = by model: 1e-10 for a porous distribution, 1e-8 otherwise "
+           "(tests/bench/results/porous_cost.md, \"The empty-bin scale\")",
+           0.0, false, 1.0, false),
       integer("solver.max_steps", "2000000", "limit on the total number of CVODE steps",
               1, 1e12),
       real("solver.max_dt_yr", "0.0", "yr",

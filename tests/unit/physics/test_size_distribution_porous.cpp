@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physics/modules/size_distribution.hpp"
@@ -59,6 +60,29 @@ TEST(SizeDistributionPorous, AcceptedAndRegistersPsi) {
   const auto& L = sim.model().layout();
   for (int k = 0; k < d->n_bins(); ++k)
     EXPECT_EQ(y[L.index(3, d->psi_slot(k))], y[L.index(3, d->bin_slot(k))]);
+}
+
+// A bin's u is resolved where its mass is (physics/coagulation/porosity.hpp): the
+// empty-bin scale e is the bins' absolute tolerance, solver.atol_sigma times their scale
+// (by default 1e-10 in a porous distribution), so a bin at e with psi = 3 sigma has u =
+// (3 e + e)/(e + e) = 2, one at 100 e has (300 + 1)/(100 + 1), and both move with the
+// tolerance.
+TEST(SizeDistributionPorous, EmptyBinScaleIsTheBinsAbsoluteTolerance) {
+  for (const auto& [sets, atol] : {std::pair<std::vector<std::string>, double>{{}, 1e-10},
+                                   {{"solver.atol_sigma=1e-8"}, 1e-8}}) {
+    Simulation sim(porous_scene(sets));
+    const auto* d = sim.distribution();
+    const auto& L = sim.model().layout();
+    const double e = atol * L.cell_var(d->bin_slot(0)).abs_scale;
+    auto y = sim.initial_state();
+    const int cell = 2, k = 5;
+    for (const double n : {1.0, 100.0}) {
+      y[L.index(cell, d->bin_slot(k))] = n * e;
+      y[L.index(cell, d->psi_slot(k))] = 3.0 * n * e;
+      EXPECT_NEAR(1.0 / d->phi(cell, k, y), (3.0 * n + 1.0) / (n + 1.0), 1e-9)
+          << "atol_sigma " << atol << ", sigma_k = " << n << " e";
+    }
+  }
 }
 
 // psi/sigma uniform: the transport moves psi_k exactly as u sigma_k (the same face terms
