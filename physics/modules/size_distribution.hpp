@@ -72,8 +72,9 @@ struct SizeDistributionOptions {
   double a_max_init = 1e-4;       //!< MRN: largest initial radius [cm]
   physics::GrowthOptions growth;  //!< drag law, turbulence, fragmentation switch
   //! the empty-bin scale e of bin_porosity() in units of sigma_scale: the bins' absolute
-  //! tolerance, solver.atol_sigma (physics/coagulation/porosity.hpp says why) [-]
-  double empty_bin_fraction = 1e-8;
+  //! tolerance, solver.atol_sigma, whose default in a porous distribution this is
+  //! (physics/coagulation/porosity.hpp says why) [-]
+  double empty_bin_fraction = 1e-10;
 };
 
 class SizeDistribution : public PhysicsModule, public DustCarrier {
