@@ -50,6 +50,9 @@ struct BinPorosity {
 //! whose psi (u sigma) is then held u times tighter than their sigma: on the porous
 //! DustPy disk at e = 1e-2 atol one such bin (sigma_k ~ 4e-2 atol, u ~ 2 600) set 808 of
 //! 999 steps (tests/bench/results/porous_cost.md, "The empty-bin scale").
+//! This is e, and the bins' absolute tolerance, by default in a porous distribution, in
+//! units of the run's dust scale [-] (atol_sigma_from_config, src/model).
+inline constexpr double kPorousEmptyBinFraction = 1e-10;
 
 //! An empty-bin scale e below any surface density of a test's state [g cm^-2]: (psi +
 //! e)/(sigma + e) is psi/sigma to the last bit, and 1 for an empty bin.

@@ -52,6 +52,7 @@
 
 #include "disk/gas_column.hpp"
 #include "physics/coagulation/cell_coefficients.hpp"
+#include "physics/coagulation/porosity.hpp"
 #include "physics/coagulation/smoluchowski.hpp"
 #include "physics/drag.hpp"
 #include "physics/growth_options.hpp"
@@ -72,9 +73,8 @@ struct SizeDistributionOptions {
   double a_max_init = 1e-4;       //!< MRN: largest initial radius [cm]
   physics::GrowthOptions growth;  //!< drag law, turbulence, fragmentation switch
   //! the empty-bin scale e of bin_porosity() in units of sigma_scale: the bins' absolute
-  //! tolerance, solver.atol_sigma, whose default in a porous distribution this is
-  //! (physics/coagulation/porosity.hpp says why) [-]
-  double empty_bin_fraction = 1e-10;
+  //! tolerance, solver.atol_sigma (physics/coagulation/porosity.hpp says why) [-]
+  double empty_bin_fraction = physics::coagulation::kPorousEmptyBinFraction;
 };
 
 class SizeDistribution : public PhysicsModule, public DustCarrier {

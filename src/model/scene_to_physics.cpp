@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "physics/coagulation/porosity.hpp"
 #include "src/core/units.hpp"
 #include "src/model/disk_tables.hpp"
 
@@ -186,7 +187,7 @@ double atol_sigma_from_config(const Config& cfg) {
   // DustPy comparison, dustpy_anchor.md).
   const bool porous_distribution =
       cfg.str("model.kind") == "distribution" && cfg.flag("porosity.enabled");
-  return porous_distribution ? 1e-10 : 1e-8;
+  return porous_distribution ? physics::coagulation::kPorousEmptyBinFraction : 1e-8;
 }
 
 }  // namespace panoptic
