@@ -10,7 +10,8 @@ its path: at the snapshot nearest --time-yr (default the last),
     top left    sigma(r, a) [g cm^-2] per mass bin (the bins are log-spaced, so per log a)
                 on r [au] and a [cm], with the mass-dominating size (/snapshots/a), and
                 the fragmentation and drift limits of Birnstiel et al. 2012 (eqs. 8 and
-                18) when the scene sets v_frag and the disk has eta
+                18) when the scene sets v_frag and the disk has eta, at the internal
+                density of the mass-dominating bin (porous runs: of the aggregates)
     top right   the distribution sigma(a) at the chosen radii (default 1, 3, 10, 30 au
                 within the grid)
     bottom left Sigma_d(r) and Sigma_g(r)
@@ -34,10 +35,18 @@ def size_limits(run, t_yr):
     """(a_frag, a_drift) [cm] per cell at the snapshot nearest t_yr, Birnstiel et al.
     2012 eq. 8: a_frag = f_f 2 Sigma_g v_f^2 / (3 pi rho_s alpha c_s^2), and eq. 18 with
     |dlnP/dlnr| = 2 eta v_K^2 / c_s^2: a_drift = f_d Sigma_d / (pi rho_s eta); None for
-    a limit whose inputs the file lacks."""
+    a limit whose inputs the file lacks. Both are Epstein Stokes numbers written as
+    radii, a = St 2 Sigma_g / (pi rho_s): rho_s is the internal density of each cell's
+    mass-dominating bin (/snapshots/rho_int), so that in a porous run (aggregates of
+    rho_int ~ 1e-4 g cm^-3, 1e4 times the radius of a compact grain of the same St) the
+    limits fall where its aggregates are, else the scene's ice_rho0."""
     cfg = run.config
-    rho_s = cfg.get("material", {}).get("ice_rho0")
     v_frag = cfg.get("fragmentation", {}).get("v_frag_ice_m_s")
+    if "rho_int" in run.snapshots:
+        rho_int = run.at_time("rho_int", t_yr)[1]
+        rho_s = np.where(rho_int > 0, rho_int, np.nan)  # a cell without dust: no line
+    else:
+        rho_s = cfg.get("material", {}).get("ice_rho0")
     if rho_s is None:
         return None, None
     _, sigma_g = run.at_time("sigma_g", t_yr)

@@ -961,6 +961,28 @@ def check_distribution_panel(tmp):
     return f"sigma {s.shape}, sums equal sigma_d, map and curves equal the data"
 
 
+def check_distribution_limits_at_rho_int(tmp):
+    """The panel's fragmentation and drift limits are Epstein Stokes numbers written as
+    radii: without /snapshots/rho_int at the scene's ice_rho0 (1.67); with it (a porous
+    run) at each cell's rho_int, so a_limit scales as 1.67 / rho_int cell by cell, and a
+    cell whose rho_int is 0 (no dust) has no limit (NaN)."""
+    path = os.path.join(tmp, "distribution_rho.h5")
+    write_distribution_run(path, n_cells=40)
+    a_frag, a_drift = plot_distribution.size_limits(reader.load_run(path), 1e3)
+    n = len(a_frag)
+    rho_int = np.geomspace(1e-4, 1.0, 3 * n).reshape(3, n)  # per snapshot and cell
+    rho_int[1, 5] = 0.0
+    with h5py.File(path, "a") as f:
+        write_dataset(f["snapshots"], "rho_int", rho_int, "g cm^-3", "internal density", True)
+    a_frag_p, a_drift_p = plot_distribution.size_limits(reader.load_run(path), 1e3)
+    live = rho_int[1] > 0
+    scale = 1.67 / rho_int[1][live]
+    assert np.allclose(a_frag_p[live], a_frag[live] * scale, rtol=1e-13, atol=0)
+    assert np.allclose(a_drift_p[live], a_drift[live] * scale, rtol=1e-13, atol=0)
+    assert np.isnan(a_frag_p[5]) and np.isnan(a_drift_p[5])
+    return f"limits x 1.67/rho_int over {int(live.sum())} cells, NaN where rho_int = 0"
+
+
 def check_model_error(tmp):
     """compare_runs of a run against itself is exactly nothing; against a copy with one
     cell's Sigma_d x 1.25 and St x 2, m_out_inner + 1 % of the initial dust and another
@@ -1062,7 +1084,7 @@ CHECKS = [check_reader_complete, check_reader_killed, check_reader_torn_dataset,
           check_dust_to_gas_map_centre, check_plot_unfinished_title,
           check_plot_run_transport_only, check_plot_run_degraded,
           check_plot_run_failure_status, check_plot_run_single_snapshot,
-          check_distribution_panel, check_model_error]
+          check_distribution_panel, check_distribution_limits_at_rho_int, check_model_error]
 
 
 def main():
