@@ -437,7 +437,9 @@ _PROCESS_OF = {
     "sigma_pl_coag": "planetesimals.coagulation", "sigma_pl_si": "planetesimals.si",
     "t_first_pl": "a planetesimal channel", "m_pl_coag": "a planetesimal channel",
     "m_pl_si": "a planetesimal channel", "m_out_gas": "gas.evolve",
-    "m_peb_snowline": "a snow line on the grid"}
+    "m_peb_snowline": "a snow line on the grid",
+    "top_bin_fraction": 'model.kind = "distribution"',
+    "top_bin_fraction_max": 'model.kind = "distribution"'}
 
 
 def _process_hint(key):

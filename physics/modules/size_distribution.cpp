@@ -491,6 +491,11 @@ std::vector<BudgetTerm> SizeDistribution::budget_terms() const {
       [this](std::span<const double> y) { return mass_sublimated(y); });
 }
 
+double SizeDistribution::top_bin_fraction(int cell, std::span<const double> y) const {
+  const double sum = sigma_d(cell, y);
+  return sum > 0.0 ? y[layout_.index(cell, bin_slot(n_bins_ - 1))] / sum : 0.0;
+}
+
 std::vector<OutputField> SizeDistribution::output_fields() const {
   const int n = grid_.n_cells(), nb = n_bins_;
   const std::size_t cells = static_cast<std::size_t>(n);
@@ -550,6 +555,13 @@ std::vector<OutputField> SizeDistribution::output_fields() const {
       {"mdot_d", cells + 1, "g s^-1",
        "dust mass flow through the faces, positive outward",
        [this](std::span<const double> y) { return mass_flow(y); }},
+      {kTopBinFractionField, cells, "",
+       "fraction of the cell's dust in the mass grid's top bin (the last of "
+       "/grid/m_bins; 0 in a cell without dust): products beyond it do not stick, so "
+       "where this is not small the largest aggregates are missing; raise "
+       "model.m_max_g",
+       per_cell(
+           [this](int i, std::span<const double> y) { return top_bin_fraction(i, y); })},
       {"st_bins", cells * nb, "",
        "Stokes number per mass bin, St(r, m), as the transport and coagulation use it: "
        "cell by cell, the bins of /grid/m_bins in each (spec §2, §15.1)",

@@ -168,9 +168,18 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! m_out_inner and m_sublimated (0 without a snow line) [g].
   std::vector<BudgetTerm> budget_terms() const override;
   //! sigma (r, m), sigma_d, the mass-dominating bin's m and a, the mass-weighted mean
-  //! mass m_mean, mdot_d, St (r, m) (st_bins); porous: phi (r, m), the mass-dominating
-  //! bin's phi and rho_int.
+  //! mass m_mean, mdot_d, St (r, m) (st_bins), the fraction of each cell's dust in the
+  //! top bin (kTopBinFractionField); porous: phi (r, m), the mass-dominating bin's phi
+  //! and rho_int.
   std::vector<OutputField> output_fields() const override;
+  //! The fraction of a cell's dust in the mass grid's top bin [-], 0 in a cell without
+  //! dust. Products beyond the top bin do not stick
+  //! (physics/coagulation/smoluchowski.hpp, as in DustPy), so where it is not small the
+  //! largest aggregates are missing and their parents pile up there: RunDiagnostics keeps
+  //! its largest value and warns.
+  double top_bin_fraction(int cell, std::span<const double> y) const;
+  //! The snapshot field of top_bin_fraction, per cell.
+  static constexpr const char* kTopBinFractionField = "top_bin_fraction";
   //! Transport: the face flows of every bin; coagulation: the dense block of every cell.
   void declare_pattern(PatternBuilder& pattern) const override;
   //! The transport part of add_rhs: the face flows of every bin (and psi_k) added to

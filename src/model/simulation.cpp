@@ -260,6 +260,14 @@ std::vector<double> Simulation::output_times() const {
   return t;
 }
 
+const char* Simulation::top_bin_fraction_field() const {
+  return distribution_ != nullptr ? SizeDistribution::kTopBinFractionField : "";
+}
+
+double Simulation::top_bin_mass() const {
+  return distribution_ != nullptr ? distribution_->mass_grid().m.back() : 0.0;
+}
+
 double Simulation::dust_mass_on_grid(std::span<const double> y) const {
   double m = 0.0;
   for (int i = 0; i < grid_.n_cells(); ++i) m += dust_->sigma_d(i, y) * grid_.area(i);

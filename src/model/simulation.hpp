@@ -69,6 +69,11 @@ class Simulation {
   const PorousGrowth* growth() const { return growth_; }
   //! The size distribution (model.kind = "distribution", spec §15), or null.
   const SizeDistribution* distribution() const { return distribution_; }
+  //! A size distribution's snapshot field of the fraction of each cell's dust in the
+  //! mass grid's top bin (SizeDistribution::kTopBinFractionField) and that bin's mass
+  //! [g]; "" and 0 without one.
+  const char* top_bin_fraction_field() const;
+  double top_bin_mass() const;
   //! The largest initial Sigma_d of a cell [g cm^-2].
   double initial_sigma_d_max() const { return sigma_scale_; }
   //! The local gas the particle laws see, or null when growth is off.

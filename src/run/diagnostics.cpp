@@ -26,6 +26,14 @@ constexpr double kFormedFraction = 1e-6;
 constexpr double kMearthPerMyr = units::kMearth / units::kMyr;
 // the snapshot field of the first-formation times
 constexpr const char* kFirstFormation = "t_first_pl";
+// A size distribution whose top bin held more than this fraction of a cell's dust at a
+// snapshot is warned about: products beyond the top bin do not stick (as in DustPy),
+// so the largest aggregates are missing and their parents pile up in the top bin. The
+// porous DustPy disk on DustPy's grid to 1e5 g held up to 7e-3 there from 3e4 yr; on a
+// grid to 1e9 g 3e-3 of a cell's dust lay above 1e5 g, Sigma_d and the mass-dominating
+// St the same to 1e-3 (tests/bench/results/dustpy_anchor.md, porous section).
+constexpr double kTopBinWarning = 1e-3;
+constexpr const char* kTopBinMax = "top_bin_fraction_max";
 
 // The /summary dataset of the pebble mass through a monitor: the snow line's and
 // r_in's have one, "" for the others.
@@ -90,6 +98,11 @@ std::vector<OutputField> RunDiagnostics::summary_fields(const Simulation& sim) {
          "Sigma_pl above which a cell counts as having formed planetesimals (1e-6 of the "
          "largest initial Sigma_d)");
   scalar("m_dust_final", "M_earth", "dust left on the grid");
+  if (sim.distribution() != nullptr)
+    scalar(kTopBinMax, "",
+           "largest fraction of a cell's dust in the mass grid's top bin at a snapshot "
+           "(snapshots/top_bin_fraction): products beyond it do not stick, so above 1e-3 "
+           "(a warning) the largest aggregates are missing; raise model.m_max_g");
   scalar("budget_error", "",
          "|sum of the budget terms (mass_budget_columns of /timeseries) - initial| / "
          "initial");
@@ -168,6 +181,21 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
         for (std::size_t i = 0; i < t_first_.size(); ++i)
           t_first_[i] = rows[rows.size() - t_first_.size() + i] * kYr;
     }
+    // the snapshots kept up to the checkpoint (a file written before the field had it
+    // not: then from the restart on)
+    const char* top = sim.top_bin_fraction_field();
+    if (h5::Handle s = h5::open_group(out_.file(), "snapshots");
+        sim.distribution() != nullptr && h5::exists(s.get(), top)) {
+      const auto times = h5::read_doubles(s.get(), "time");
+      const auto rows = h5::read_doubles(s.get(), top);
+      const auto cells = static_cast<std::size_t>(n);
+      for (std::size_t k = 0; k < times.size() && (k + 1) * cells <= rows.size(); ++k) {
+        const auto row = rows.begin() + static_cast<std::ptrdiff_t>(k * cells);
+        note_snapshot(
+            times[k] * kYr,
+            {{top, std::vector<double>(row, row + static_cast<std::ptrdiff_t>(cells))}});
+      }
+    }
   }
 }
 
@@ -177,6 +205,16 @@ void RunDiagnostics::add_snapshot_fields(
   std::vector<double> t(t_first_.size());
   for (std::size_t i = 0; i < t.size(); ++i) t[i] = t_first_[i] / kYr;
   fields[kFirstFormation] = std::move(t);
+}
+
+void RunDiagnostics::note_snapshot(
+    double t, const std::map<std::string, std::vector<double>>& fields) {
+  const auto it = fields.find(sim_.top_bin_fraction_field());
+  if (it == fields.end()) return;
+  for (std::size_t i = 0; i < it->second.size(); ++i)
+    if (it->second[i] > top_bin_.fraction)
+      top_bin_ = {it->second[i], sim_.grid().r_c(static_cast<int>(i)) / units::kAu,
+                  t / kYr};
 }
 
 void RunDiagnostics::on_step(double t, std::span<const double> y) {
@@ -269,11 +307,20 @@ std::string RunDiagnostics::finish(double t, std::span<const double> y) {
   }
   values["formed_threshold"] = {threshold_.empty() ? 0.0 : threshold_[0]};
   values["m_dust_final"] = {sim_.dust_mass_on_grid(y) / kMearth};
+  values[kTopBinMax] = {top_bin_.fraction};
   values["budget_error"] = {sim_.budget_error(y)};
   for (const OutputField& f : summary_fields(sim_))
     out_.write_static("summary", f.name, values.at(f.name), f.units, f.description);
   txt << "  dust left on the grid: " << sim_.dust_mass_on_grid(y) / kMearth
       << " M_earth\n";
+  if (top_bin_.fraction > kTopBinWarning)
+    txt << "WARNING: the mass grid's top bin (" << sim_.top_bin_mass()
+        << " g, model.m_max_g = " << sim_.config().real("model.m_max_g") << ") held "
+        << top_bin_.fraction << " of the dust of the cell at " << top_bin_.r_au
+        << " au at " << top_bin_.t_yr << " yr (snapshots/top_bin_fraction; more than "
+        << kTopBinWarning
+        << "): products beyond it do not stick, so the largest aggregates are missing "
+           "and pile up there; raise model.m_max_g to resolve them\n";
   out_.flush();
   return txt.str();
 }

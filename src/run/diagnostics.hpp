@@ -6,8 +6,9 @@
 //!   first CVODE step past each sample time, so it costs one flux evaluation per sample);
 //! - the time of first planetesimal formation in every cell (checked after every step);
 //! - /summary at the end: planetesimal mass and radial range by channel, first-formation
-//!   time over r, pebble mass through the snow line and r_in, final dust mass; printed
-//!   too.
+//!   time over r, pebble mass through the snow line and r_in, final dust mass, a size
+//!   distribution's largest top-bin fraction (warned about above kTopBinWarning);
+//!   printed too.
 #include <map>
 #include <span>
 #include <string>
@@ -44,6 +45,10 @@ class RunDiagnostics {
   static std::vector<OutputField> summary_fields(const Simulation& sim);
   //! Adds the diagnostics' snapshot fields (output_fields) to `fields`.
   void add_snapshot_fields(std::map<std::string, std::vector<double>>& fields) const;
+  //! At each snapshot (time t [s]) with its fields: a size distribution's largest
+  //! fraction of a cell's dust in the mass grid's top bin so far, which finish()
+  //! writes and warns about.
+  void note_snapshot(double t, const std::map<std::string, std::vector<double>>& fields);
   //! Writes /summary and returns it as text for the terminal.
   std::string finish(double t, std::span<const double> y);
   //! After a restart: the kept /timeseries rows the file had lost (mark_lost_rows), now
@@ -60,7 +65,12 @@ class RunDiagnostics {
   double last_sample_t_ = -1.0;  //!< time of the last row sampled by this process [s]
   std::string lost_;
   std::vector<std::vector<double>> rows_time_, rows_flux_, rows_mass_, rows_budget_;
-  std::vector<double> t_first_;    //!< per cell, first planetesimal formation [s]
+  std::vector<double> t_first_;  //!< per cell, first planetesimal formation [s]
+  //! a size distribution's largest top-bin fraction over the snapshots (note_snapshot),
+  //! with its cell's radius [au] and time [yr]
+  struct TopBin {
+    double fraction = 0.0, r_au = 0.0, t_yr = 0.0;
+  } top_bin_;
   std::vector<double> threshold_;  //!< per cell: Sigma_pl that counts as formed
 };
 

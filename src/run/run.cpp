@@ -117,6 +117,7 @@ int run_scene(const RunArgs& a) {
   const auto snapshot = [&](double t, std::span<const double> y) {
     auto fields = sim.snapshot_fields(y);
     diag.add_snapshot_fields(fields);
+    diag.note_snapshot(t, fields);
     diag.flush();
     out.write_snapshot(t / units::kYr, fields);
   };

@@ -10,7 +10,10 @@ With planetesimals per bin (direct coagulation and the d16 streaming instability
 thresholds lowered as in test_bin_planetesimals; 6 cells), compact and porous: both
 channels book mass before the checkpoint and after it. With erosion (halt, v_eros =
 0.3 m/s under v_frag = 1 m/s: the unequal pairs erode, spec §5.1, §15.2): the mass-weighted
-mean mass of the inner cells ends below a tenth of the compact run's (erosion off)."""
+mean mass of the inner cells ends below a tenth of the compact run's (erosion off). With
+a mass grid that ends at 1e-2 g: the largest fraction of a cell's dust in the top bin,
+reached at the checkpoint's snapshot, is /summary/top_bin_fraction_max after the restart
+too (src/run/diagnostics.cpp reads it back)."""
 import numpy as np
 
 from common import Checks, parse_args
@@ -35,6 +38,9 @@ CASES = (
     ("planetesimals_porous", [EVERY, *PLANETESIMALS, "porosity.enabled=true",
                               "output.t_end_yr=300.0", "output.t_first_yr=10.0"]),
     ("erosion", [EVERY, "erosion.model=halt", "erosion.v_eros_m_s=0.3"]),
+    # a mass grid that ends at 1e-2 g: the top bin holds up to 0.118 of a cell's dust,
+    # most at snapshot 2, the checkpoint's, so the restart must read it back
+    ("top_bin", [EVERY, "model.m_max_g=1e-2"]),
 )
 INNER = 6  # the cells inside ~10 au, where the pairs collide above v_eros
 
@@ -68,6 +74,20 @@ def eroded(c, full, compact):
             f"{np.array2string(ratio, precision=3)} of the compact run's (< 0.1)")
 
 
+def top_bin_kept(c, full, k):
+    """/summary/top_bin_fraction_max is the largest of /snapshots/top_bin_fraction, here
+    reached at or before the checkpoint's snapshot k (so that the restarted run, which
+    never computes that snapshot again, has it from the file), and above the warning's
+    1e-3."""
+    fraction, = snapshots(full, "top_bin_fraction")
+    with open_output(full) as f:
+        summary = f["summary/top_bin_fraction_max"][()]
+    peak = int(np.argmax(fraction.max(axis=1)))
+    c.check(summary.shape == (1,) and summary[0] == fraction.max() and 1e-3 < summary[0]
+            and 0 < peak <= k, f"top_bin: /summary/top_bin_fraction_max {summary[0]:.4g} "
+            f"is the snapshots' largest, at snapshot {peak} (checkpoint: {k})")
+
+
 def main():
     args = parse_args()
     c = Checks()
@@ -81,6 +101,8 @@ def main():
             planetesimals_formed(c, name, full, k)
         if name == "erosion":
             eroded(c, full, outputs["compact"])
+        if name == "top_bin":
+            top_bin_kept(c, full, k)
         c.check(0 < k < rows(full) - 1, f"{name}: the checkpoint is mid-run (snapshot {k} "
                 f"of {rows(full) - 1})")
         same = h5diff_snapshots(full, again)
