@@ -174,27 +174,22 @@ RunDiagnostics::RunDiagnostics(const Simulation& sim, RunOutput& out, double t_s
     }
     while (next_sample_ < sample_times_.size() && sample_times_[next_sample_] <= t_start)
       ++next_sample_;
+    h5::Handle s = h5::open_group(out_.file(), "snapshots");
     if (sim.planetesimals()) {
-      h5::Handle s = h5::open_group(out_.file(), "snapshots");
       const auto rows = h5::read_doubles(s.get(), kFirstFormation);
       if (rows.size() >= t_first_.size())
         for (std::size_t i = 0; i < t_first_.size(); ++i)
           t_first_[i] = rows[rows.size() - t_first_.size() + i] * kYr;
     }
-    // the snapshots kept up to the checkpoint (a file written before the field had it
-    // not: then from the restart on)
+    // the top-bin fractions of the snapshots kept up to the checkpoint (a file written
+    // before the field had it not: then from the restart on)
     const char* top = sim.top_bin_fraction_field();
-    if (h5::Handle s = h5::open_group(out_.file(), "snapshots");
-        sim.distribution() != nullptr && h5::exists(s.get(), top)) {
+    if (sim.distribution() != nullptr && h5::exists(s.get(), top)) {
       const auto times = h5::read_doubles(s.get(), "time");
       const auto rows = h5::read_doubles(s.get(), top);
       const auto cells = static_cast<std::size_t>(n);
-      for (std::size_t k = 0; k < times.size() && (k + 1) * cells <= rows.size(); ++k) {
-        const auto row = rows.begin() + static_cast<std::ptrdiff_t>(k * cells);
-        note_snapshot(
-            times[k] * kYr,
-            {{top, std::vector<double>(row, row + static_cast<std::ptrdiff_t>(cells))}});
-      }
+      for (std::size_t k = 0; k < times.size() && (k + 1) * cells <= rows.size(); ++k)
+        note_top_bin(times[k] * kYr, std::span(rows).subspan(k * cells, cells));
     }
   }
 }
@@ -209,11 +204,14 @@ void RunDiagnostics::add_snapshot_fields(
 
 void RunDiagnostics::note_snapshot(
     double t, const std::map<std::string, std::vector<double>>& fields) {
-  const auto it = fields.find(sim_.top_bin_fraction_field());
-  if (it == fields.end()) return;
-  for (std::size_t i = 0; i < it->second.size(); ++i)
-    if (it->second[i] > top_bin_.fraction)
-      top_bin_ = {it->second[i], sim_.grid().r_c(static_cast<int>(i)) / units::kAu,
+  if (const auto it = fields.find(sim_.top_bin_fraction_field()); it != fields.end())
+    note_top_bin(t, it->second);
+}
+
+void RunDiagnostics::note_top_bin(double t, std::span<const double> fraction) {
+  for (std::size_t i = 0; i < fraction.size(); ++i)
+    if (fraction[i] > top_bin_.fraction)
+      top_bin_ = {fraction[i], sim_.grid().r_c(static_cast<int>(i)) / units::kAu,
                   t / kYr};
 }
 

@@ -57,6 +57,8 @@ class RunDiagnostics {
 
  private:
   void sample(double t, std::span<const double> y);
+  //! note_snapshot's work on one snapshot's top-bin fractions (per cell) at time t [s].
+  void note_top_bin(double t, std::span<const double> fraction);
 
   const Simulation& sim_;
   RunOutput& out_;

@@ -31,7 +31,8 @@ def errors(ref, run, floor):
     for k in range(ref["snapshots/time"].shape[0]):
         s0, s1 = ref["snapshots/sigma"][k], run["snapshots/sigma"][k]
         keep = s0 > floor * s0.max()
-        rs = np.abs(s1[keep] / s0[keep] - 1.0)
+        r = np.where(keep, np.abs(s1 / np.where(keep, s0, 1.0) - 1.0), 0.0)
+        rs = r[keep]
         worst[0] = max(worst[0], rs.max())
         medians[0].append(np.median(rs))
         if "phi_bins" in ref["snapshots"]:
@@ -42,7 +43,6 @@ def errors(ref, run, floor):
         d0, d1 = ref["snapshots/sigma_d"][k], run["snapshots/sigma_d"][k]
         worst[4] = max(worst[4], np.max(np.abs(d1 / d0 - 1.0)))
         w = np.where(keep, s0, 0.0).reshape(n_cells, -1)
-        r = np.where(keep, np.abs(s1 / np.where(keep, s0, 1.0) - 1.0), 0.0)
         held = w.sum(axis=1) > 0.0  # cells with a bin above the floor
         cell = (w * r.reshape(n_cells, -1)).sum(axis=1)[held] / w.sum(axis=1)[held]
         worst[5] = max(worst[5], cell.max())
