@@ -19,11 +19,15 @@
 // Usage: build/tests/bench_porous_newton SCENE [--set key=value ...] [--probe N]
 //        [--every K] (probe every K-th failure) [--threads T] (worker threads,
 //        src/core/worker_threads.hpp: the CPU time is then that of all threads)
+//        [--limiting 1]; or --restart CHK.h5 instead of SCENE: from a checkpoint's state
+//        and time on, with its stored scene (--set may change the output times and the
+//        solver, as `panoptic run --restart`), to the scene's snapshot times after it
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +35,7 @@
 #include "src/core/units.hpp"
 #include "src/core/worker_threads.hpp"
 #include "src/model/simulation.hpp"
+#include "src/run/restart.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/block_banded_lu.hpp"
 #include "src/solver/cvode_integrator.hpp"
@@ -293,16 +298,19 @@ void analyse(const Simulation& sim, const Probe& pr, const IntegratorOptions& op
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
+  const bool from_checkpoint = argc > 2 && std::string(argv[1]) == "--restart";
+  if (argc < 2 || (std::string(argv[1]) == "--restart" && !from_checkpoint)) {
     std::fprintf(
-        stderr, "usage: %s SCENE [--set k=v ...] [--probe N] [--every K] [--threads T]\n",
+        stderr,
+        "usage: %s SCENE|--restart CHK.h5 [--set k=v ...] [--probe N] [--every K] "
+        "[--threads T] [--limiting 1]\n",
         argv[0]);
     return 2;
   }
   std::vector<std::string> sets;
   int n_probe = 0, every = 1;
   bool count_limiting = false;
-  for (int i = 2; i + 1 < argc; i += 2) {
+  for (int i = from_checkpoint ? 3 : 2; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--set")
       sets.emplace_back(argv[i + 1]);
@@ -315,10 +323,15 @@ int main(int argc, char** argv) {
     else if (a == "--threads")
       set_worker_threads(std::stoi(argv[i + 1]));
   }
-  Simulation sim(load_scene(argv[1], sets));
+  std::optional<RestartPoint> restart;
+  if (from_checkpoint) restart = load_restart_point(argv[2]);
+  Simulation sim(restart ? checkpoint_scene(*restart, sets) : load_scene(argv[1], sets));
   const IntegratorOptions opt = sim.integrator_options();
-  const std::vector<double> times = sim.output_times();
-  std::vector<double> y = sim.initial_state();
+  const std::vector<double> times =
+      restart ? times_after_restart(sim.output_times(), restart->chk.t)
+              : sim.output_times();
+  std::vector<double> y = restart ? restart->chk.y : sim.initial_state();
+  sim.refresh_local_gas(y);  // as panoptic run (the particle laws' eta and v_g)
   CvodeIntegrator cvode(sim.model(), times.front(), y, opt);
   CallbackTimes cb;
   cvode.set_profile(&cb);
@@ -398,6 +411,12 @@ int main(int argc, char** argv) {
       "Newton failures, %ld error-test failures, %.1f s CPU; budget error %.1e\n",
       s.nst, s.nfe, s.nje, s.nni, s.nncf, s.netf, cpu_seconds() - cpu0,
       sim.budget_error(y));
+  if (opt.linear == LinearSolverKind::gmres) {
+    const KrylovStats ks = cvode.krylov_stats();
+    std::printf(
+        "GMRES: %ld iterations, %ld preconditioner solves, %ld convergence failures\n",
+        ks.nli, ks.nps, ks.nlcf);
+  }
   if (count_limiting) {
     std::printf("steps limited by (largest weighted local error):");
     for (const auto& [kind, n] : limiting_kind) std::printf(" %s %ld", kind.c_str(), n);
