@@ -68,8 +68,9 @@ std::vector<KeySpec> solver_keys() {
                 "Newton stops when its correction is below this fraction of the local "
                 "error tolerance; 0 = by model.kind: 0.03 for single_size (less Newton "
                 "error in the local error estimate, fewer failed steps: "
-                "tests/bench/results/performance_log.md), 0.05 for a distribution, "
-                "compact or porous (tests/bench/results/porous_newton.md)",
+                "tests/bench/results/performance_log.md), 0.05 for a compact "
+                "distribution, 0.1 for a porous one "
+                "(tests/bench/results/porous_newton.md)",
                 0.0, false, 1.0, false)),
       when(
           {bdf},

@@ -1,7 +1,7 @@
 // The solver keys whose default 0 the model kind resolves: solver.newton_coef is 0.03
-// for the single-size model and 0.05 for a size distribution, compact or porous
-// (keys_run.cpp; tests/bench/results/porous_newton.md); solver.atol_sigma is 1e-10 for
-// a porous distribution and 1e-8 otherwise (scene_to_physics.cpp;
+// for the single-size model, 0.05 for a compact size distribution and 0.1 for a porous
+// one (keys_run.cpp; tests/bench/results/porous_newton.md); solver.atol_sigma is 1e-10
+// for a porous distribution and 1e-8 otherwise (scene_to_physics.cpp;
 // tests/bench/results/porous_cost.md). A value given in the scene is kept.
 #include <gtest/gtest.h>
 
@@ -26,8 +26,7 @@ TEST(SolverDefaults, NewtonCoefficientByModelKind) {
             0.0);
   EXPECT_EQ(newton_coef("fiducial.toml", {}), 0.03);
   EXPECT_EQ(newton_coef("tests/distribution_small.toml", {}), 0.05);
-  EXPECT_EQ(newton_coef("tests/distribution_small.toml", {"porosity.enabled=true"}),
-            0.05);
+  EXPECT_EQ(newton_coef("tests/distribution_small.toml", {"porosity.enabled=true"}), 0.1);
   EXPECT_EQ(newton_coef("tests/distribution_small.toml", {"solver.newton_coef=0.03"}),
             0.03);
   EXPECT_EQ(newton_coef("fiducial.toml", {"solver.newton_coef=0.1"}), 0.1);
