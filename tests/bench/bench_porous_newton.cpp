@@ -34,6 +34,7 @@
 #include "physics/modules/size_distribution.hpp"
 #include "src/core/units.hpp"
 #include "src/core/worker_threads.hpp"
+#include "src/model/scene_validation.hpp"
 #include "src/model/simulation.hpp"
 #include "src/run/restart.hpp"
 #include "src/scene/config.hpp"
@@ -325,7 +326,11 @@ int main(int argc, char** argv) {
   }
   std::optional<RestartPoint> restart;
   if (from_checkpoint) restart = load_restart_point(argv[2]);
-  Simulation sim(restart ? checkpoint_scene(*restart, sets) : load_scene(argv[1], sets));
+  const Config cfg =
+      restart ? checkpoint_scene(*restart, sets) : load_scene(argv[1], sets);
+  validate_scene(cfg);  // as panoptic run: a --set that the scene or checkpoint refuses
+  Simulation sim(cfg);
+  if (restart) check_compatible(restart->chk, restart->path, cfg, sim.model().layout());
   const IntegratorOptions opt = sim.integrator_options();
   const std::vector<double> times =
       restart ? times_after_restart(sim.output_times(), restart->chk.t)
