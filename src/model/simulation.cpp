@@ -191,7 +191,7 @@ double Simulation::newton_coefficient() const {
   // fails the error test at 0.1 (porous_newton.md, "The fiducial distribution's late
   // steps").
   if (distribution_ == nullptr) return 0.03;
-  return cfg_.flag("porosity.enabled") ? 0.1 : 0.05;
+  return distribution_->porous() ? 0.1 : 0.05;
 }
 
 IntegratorOptions Simulation::integrator_options() const {

@@ -299,8 +299,8 @@ void analyse(const Simulation& sim, const Probe& pr, const IntegratorOptions& op
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool from_checkpoint = argc > 2 && std::string(argv[1]) == "--restart";
-  if (argc < 2 || (std::string(argv[1]) == "--restart" && !from_checkpoint)) {
+  const bool from_checkpoint = argc > 1 && std::string(argv[1]) == "--restart";
+  if (argc < (from_checkpoint ? 3 : 2)) {
     std::fprintf(
         stderr,
         "usage: %s SCENE|--restart CHK.h5 [--set k=v ...] [--probe N] [--every K] "
