@@ -31,6 +31,9 @@ struct CellModel {
   //! psi/sigma to the last bit (the distribution mode sets its bins' absolute tolerance,
   //! porosity.hpp)
   double empty_scale = kTinyEmptyScale;
+  //! Compact engine (no psi): each bin's filling factor, fixed for the call (the track
+  //! mode's, porosity_track.hpp); empty: phi = 1.
+  std::span<const double> bin_phi;
 };
 
 //! The outcomes of a cell's pairs under the scene's switches (spec §15.2):
@@ -157,16 +160,16 @@ inline void clear_coefficients(CellCoefficients& c) {
 }
 
 //! Coefficients of the cell with bin masses sigma and, for porous aggregates, psi (empty:
-//! compact, phi = 1). Each bin's u by bin_porosity() (porosity.hpp): an empty bin is
-//! compact and enters only through the rate of its first collisions. With `derivatives`
-//! (porous, for the Jacobian) also d ln K_ij, d p_ij and d d_ij by ln u of each partner,
-//! by forward differences of 1e-6 in ln u (about twice the cost; the right-hand side
-//! needs none), and those of the floors and relaxation rates.
-//! A caller that evaluates a cell repeatedly passes its `workspace` and the cell's
-//! previous coefficients as `c` (moved in): their storage is reused, and nothing is
-//! allocated once the sizes are set. A caller that has the perturbed_bins of the same
-//! filling factors (for d St / d ln u of its own) passes them as `perturbed`, so that
-//! they are computed once; without them they are computed here.
+//! compact, phi = 1 or model.bin_phi). Each bin's u by bin_porosity() (porosity.hpp): an
+//! empty bin is compact and enters only through the rate of its first collisions. With
+//! `derivatives` (porous, for the Jacobian) also d ln K_ij, d p_ij and d d_ij by ln u of
+//! each partner, by forward differences of 1e-6 in ln u (about twice the cost; the
+//! right-hand side needs none), and those of the floors and relaxation rates. A caller
+//! that evaluates a cell repeatedly passes its `workspace` and the cell's previous
+//! coefficients as `c` (moved in): their storage is reused, and nothing is allocated once
+//! the sizes are set. A caller that has the perturbed_bins of the same filling factors
+//! (for d St / d ln u of its own) passes them as `perturbed`, so that they are computed
+//! once; without them they are computed here.
 inline CellCoefficients cell_coefficients(
     const Smoluchowski& engine, std::span<const double> sigma,
     std::span<const double> psi, const LocalGas& gas, const CellModel& model,
@@ -180,7 +183,10 @@ inline CellCoefficients cell_coefficients(
   const bool porous = !psi.empty();
   std::vector<double>& phi = ws.phi;
   std::vector<double>& u = ws.u;
-  phi.assign(n, 1.0);
+  if (!porous && !model.bin_phi.empty())
+    phi.assign(model.bin_phi.begin(), model.bin_phi.end());
+  else
+    phi.assign(n, 1.0);
   u.assign(n, 1.0);
   ws.compact.assign(n, 1);
   int n_compact = n;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "physics/coagulation/porosity_track.hpp"
 #include "physics/modules/porous_growth.hpp"
 #include "physics/particle.hpp"
 #include "src/core/worker_threads.hpp"
@@ -30,7 +31,8 @@ SizeDistribution::SizeDistribution(StateLayout& layout, const Grid& grid,
                              options.bins_per_decade),
               options.coagulation ? coag::fragmentation_model(options.growth)
                                   : coag::FragmentationModel{}),
-      porous_(options.growth.porosity),
+      porous_(options.growth.porosity && !options.porosity_track),
+      track_(options.growth.porosity && options.porosity_track),
       n_bins_(engine_.size()),
       mass_unit_(dust_mass),
       empty_scale_(options.empty_bin_fraction * sigma_scale) {
@@ -55,6 +57,7 @@ SizeDistribution::SizeDistribution(StateLayout& layout, const Grid& grid,
   const int n = grid.n_cells();
   coef_.resize(n);
   st_.resize(static_cast<std::size_t>(n) * n_bins_);
+  if (track_) track_phi_.resize(st_.size());
   dst_dlnu_.assign(st_.size(), 0.0);
   for (int i = 0; i < n; ++i) {
     gas_now_.push_back(cell_gas.reference(i));
@@ -79,20 +82,29 @@ double SizeDistribution::first_bin_mass(const SizeDistributionOptions& options,
 coag::CellModel SizeDistribution::cell_model(int cell) const {
   // DustPy's outcome model, with erosion Krijt et al.'s on the unequal pairs (spec §15.2)
   const physics::Species& sp = species_[cell];
-  return {sp, opt_.growth, coag::outcome_switches(opt_.growth, sp), empty_scale_};
+  return {sp, opt_.growth, coag::outcome_switches(opt_.growth, sp), empty_scale_, {}};
 }
 
 void SizeDistribution::build_cell(int cell, const physics::LocalGas& gas) const {
   const int nb = n_bins_;
   const physics::Species& sp = species_[cell];
-  const std::vector<double> phi(nb, 1.0);
+  std::vector<double> phi(nb, 1.0);
+  coag::CellModel model = cell_model(cell);
+  if (track_) {
+    const std::span<double> track(&track_phi_[static_cast<std::size_t>(cell) * nb],
+                                  static_cast<std::size_t>(nb));
+    coag::track_filling_factors(engine_.grid().m, sp, gas, opt_.growth, track,
+                                track_start_mass(cell));
+    phi.assign(track.begin(), track.end());
+    model.bin_phi = track;
+  }
   const coag::BinProperties bins =
       coag::bin_properties(engine_.grid(), phi, sp.rho0, gas, opt_.growth.drag);
   std::copy(bins.St.begin(), bins.St.end(),
             st_.begin() + static_cast<std::ptrdiff_t>(cell) * nb);
   if (!opt_.coagulation || porous_) return;  // porous: update_porous()
   const std::vector<double> sigma(nb, 0.0);
-  coef_[cell] = coag::cell_coefficients(engine_, sigma, {}, gas, cell_model(cell));
+  coef_[cell] = coag::cell_coefficients(engine_, sigma, {}, gas, model);
 }
 
 void SizeDistribution::refresh(std::span<const double> y) const {
@@ -105,6 +117,7 @@ void SizeDistribution::refresh(std::span<const double> y) const {
 }
 
 double SizeDistribution::phi(int cell, int k, std::span<const double> y) const {
+  if (track_) return track_phi_[static_cast<std::size_t>(cell) * n_bins_ + k];
   return porous_ ? porosity(cell, k, y).phi() : 1.0;
 }
 
@@ -186,6 +199,14 @@ std::vector<double> SizeDistribution::bin_radii(int cell) const {
 int SizeDistribution::monomer_bin(int cell) const {
   // 1e-9: the monomer mass that set the first bin is that bin, to round-off
   return std::max(0, engine_.grid().lower_bin(species_[cell].m0 * (1.0 + 1e-9)));
+}
+
+double SizeDistribution::track_start_mass(int cell) const {
+  std::vector<double> bins(n_bins_);
+  initial_cell(cell, 1.0, bins);
+  double ln_m = 0.0;
+  for (int k = 0; k < n_bins_; ++k) ln_m += bins[k] * std::log(engine_.grid().m[k]);
+  return std::exp(ln_m);
 }
 
 void SizeDistribution::initial_cell(int cell, double sigma_d,
@@ -570,13 +591,14 @@ std::vector<OutputField> SizeDistribution::output_fields() const {
          return std::vector<double>(st.begin(), st.end());
        }},
   };
-  if (!porous_) return fields;
+  if (!porous_ && !track_) return fields;
   // porous: phi(r, m) and the mass-dominating bin's phi and internal density, named as
   // the single-size model's fields (spec §15.4)
   fields.push_back({"phi_bins", cells * nb, "",
-                    "filling factor per mass bin, phi(r, m) = sigma_k/psi_k: cell by "
-                    "cell, the bins of /grid/m_bins in each (1 in an empty bin; spec "
-                    "§15.1)",
+                    "filling factor per mass bin, phi(r, m): sigma_k/psi_k (1 in an "
+                    "empty bin; spec §15.1), or with porosity.bins = \"track\" the "
+                    "single-size law's phi(m_k) at the cell's gas; cell by cell, the "
+                    "bins of /grid/m_bins in each",
                     per_bin([this](int i, int k, std::span<const double> y) {
                       return phi(i, k, y);
                     })});

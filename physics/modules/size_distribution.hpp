@@ -33,6 +33,11 @@
 //! (physics/coagulation/porosity.hpp), with the empty-bin scale
 //! options.empty_bin_fraction of sigma_scale: the bins' absolute tolerance.
 //!
+//! Porosity on the track (options.porosity_track): no psi_k; each bin's filling factor
+//! is the single-size porosity law's phi(m_k) at its cell's gas
+//! (physics/coagulation/porosity_track.hpp), fixed between refreshes as the gas is, and
+//! the coefficients and St are those of a compact distribution with these phi_k.
+//!
 //! Snow line (spec §1.7, §6.3, §15.4; set_snowline()): every cell coagulates with its
 //! own monomer species (silicate inside r_snow, ice outside, as the single-size model),
 //! on one mass grid for all cells. The mass of bin k that crosses the snow face inward
@@ -75,6 +80,10 @@ struct SizeDistributionOptions {
   //! the empty-bin scale e of bin_porosity() in units of sigma_scale: the bins' absolute
   //! tolerance, solver.atol_sigma (physics/coagulation/porosity.hpp says why) [-]
   double empty_bin_fraction = physics::coagulation::kPorousEmptyBinFraction;
+  //! growth.porosity: the bins' filling factors on the single-size law's track at each
+  //! cell's gas (porosity.bins = "track", physics/coagulation/porosity_track.hpp)
+  //! instead of a volume moment psi_k per bin
+  bool porosity_track = false;
 };
 
 class SizeDistribution : public PhysicsModule, public DustCarrier {
@@ -97,13 +106,16 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   const physics::coagulation::Smoluchowski& engine() const { return engine_; }
   int n_bins() const { return n_bins_; }
   int bin_slot(int k) const { return slot0_ + k; }
+  //! psi_k per bin (porosity evolved; the track mode has none).
   bool porous() const { return porous_; }
+  //! The bins' filling factors on the track (options.porosity_track).
+  bool porosity_track() const { return track_; }
   //! Variables per cell, from bin_slot(0) on: sigma_k, then (porous) psi_k.
   int cell_vars() const { return porous_ ? 2 * n_bins_ : n_bins_; }
   //! Slot of psi_k (porous only).
   int psi_slot(int k) const { return slot0_ + n_bins_ + k; }
   //! Filling factor of bin k of `cell`: sigma_k/psi_k by the rule of bin_porosity()
-  //! (1 for an empty bin or compact) [-].
+  //! (1 for an empty bin or compact), or the track's [-].
   double phi(int cell, int k, std::span<const double> y) const;
   //! u = 1/phi of bin k of `cell` with its derivatives by sigma_k and psi_k
   //! (physics/coagulation/porosity.hpp, bin_porosity; porous only).
@@ -113,6 +125,8 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! them).
   physics::coagulation::CellCoefficients coefficients(int cell,
                                                       std::span<const double> y) const;
+  //! The monomers `cell` coagulates with.
+  const physics::Species& species(int cell) const { return species_[cell]; }
   //! The gas of `cell` that the bins' St are taken with: that of the last refresh().
   const physics::LocalGas& bin_gas(int cell) const { return gas_now_[cell]; }
   //! St of every bin of every cell at state y, [cell * N + k], as the transport and the
@@ -136,6 +150,11 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! starts above it).
   int monomer_bin(int cell) const;
 
+  //! Where the porosity track of `cell` starts, compact [g]: the initial dust's
+  //! mass-weighted mean of ln m_k (initial_cell), the mass of the particle that
+  //! represents it in the single-size model (spec §6.2); the monomer mass for
+  //! model.init = "monomers". Its sticking products are the track's first aggregates.
+  double track_start_mass(int cell) const;
   //! The initial bins of `cell` holding sigma_d [g cm^-2], from its monomer bin up: MRN,
   //! sigma_k ∝ a_k^(1/2) for a_k <= a_max_init (n(a) ∝ a^-3.5 per log bin, as DustPy),
   //! or all in the monomer bin; porous (bins holds cell_vars()): psi_k = sigma_k,
@@ -169,8 +188,8 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   std::vector<BudgetTerm> budget_terms() const override;
   //! sigma (r, m), sigma_d, the mass-dominating bin's m and a, the mass-weighted mean
   //! mass m_mean, mdot_d, St (r, m) (st_bins), the fraction of each cell's dust in the
-  //! top bin (kTopBinFractionField); porous: phi (r, m), the mass-dominating bin's phi
-  //! and rho_int.
+  //! top bin (kTopBinFractionField); porous or on the track: phi (r, m), the
+  //! mass-dominating bin's phi and rho_int.
   std::vector<OutputField> output_fields() const override;
   //! The fraction of a cell's dust in the mass grid's top bin [-], 0 in a cell without
   //! dust. Products beyond the top bin do not stick
@@ -201,7 +220,8 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
     physics::coagulation::PerturbedBins perturbed;  //!< porous Jacobian
   };
 
-  //! The coefficients and St of every bin of `cell` from its gas (compact).
+  //! The coefficients and St of every bin of `cell` from its gas (compact; with
+  //! track_, the track's filling factors first).
   void build_cell(int cell, const physics::LocalGas& gas) const;
   //! The outcome model of `cell`'s species (DustPy's, with erosion Krijt et al.'s on the
   //! unequal pairs: spec §15.2).
@@ -245,6 +265,7 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   SizeDistributionOptions opt_;
   physics::coagulation::Smoluchowski engine_;
   bool porous_ = false;
+  bool track_ = false;  //!< options.porosity_track with growth.porosity
   int n_bins_ = 0, slot0_ = -1, g_out_ = -1;
   double mass_unit_ = 1.0;
   double empty_scale_ = 0.0;       //!< e of bin_porosity() [g cm^-2]
@@ -256,6 +277,8 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   // per cell: the coagulation coefficients and the bins' St (refresh())
   mutable std::vector<physics::coagulation::CellCoefficients> coef_;
   mutable std::vector<double> st_;  //!< [cell * N + k]
+  //! track_: each bin's filling factor at the gas of the last refresh [cell * N + k]
+  mutable std::vector<double> track_phi_;
   //! porous: the state st_ was computed at (empty: none since the last refresh())
   mutable std::vector<double> st_state_;
   //! porous, Jacobian: d St / d ln u of every bin [cell * N + k]

@@ -95,6 +95,8 @@ std::unique_ptr<PhysicsModule> build_size_distribution(ModuleContext& c) {
   o.a_max_init = cfg.real("model.a_max_init_um") * 1e-4;
   o.empty_bin_fraction = atol_sigma_from_config(cfg);
   o.growth = growth_options_from_config(cfg);
+  o.porosity_track =
+      o.coagulation && o.growth.porosity && cfg.str("porosity.bins") == "track";
   const double m_first = SizeDistribution::first_bin_mass(o, c.species);
   if (m_first >= o.m_max)
     cfg.fail("model.m_max_g",

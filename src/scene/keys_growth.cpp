@@ -61,6 +61,12 @@ std::vector<KeySpec> porosity_keys() {
       when({growth_on(), is("porosity.enabled", {"true"})},
            flag("porosity.self_gravity", "true",
                 "static compression by self-gravity (§4.3)")),
+      when({growth_on(), is("porosity.enabled", {"true"}), distribution()},
+           choice("porosity.bins", "evolved", {"evolved", "track"},
+                  "a size distribution's filling factors: evolved, a volume moment "
+                  "per bin (Okuzumi et al. 2009, spec §15.1); or track, the single-size "
+                  "law's phi(m) at each cell's gas (§4.2-§4.4), at the compact mode's "
+                  "cost (physics/coagulation/porosity_track.hpp)")),
   };
 }
 
