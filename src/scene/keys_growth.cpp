@@ -66,7 +66,8 @@ std::vector<KeySpec> porosity_keys() {
                   "a size distribution's filling factors: evolved, a volume moment "
                   "per bin (Okuzumi et al. 2009, spec §15.1); or track, the single-size "
                   "law's phi(m) at each cell's gas (§4.2-§4.4), at the compact mode's "
-                  "cost (physics/coagulation/porosity_track.hpp)")),
+                  "cost: close to evolved with the compaction floors on, not without "
+                  "them (tests/bench/results/porosity_track.md)")),
   };
 }
 

@@ -4,7 +4,8 @@ fragmentation, drift, diffusion, the viscous gas) run once straight and once res
 its mid-run checkpoint (.chk.prev.h5, checkpoint.every_snapshots = 2) writes /snapshots
 (sigma(r, m) included), /timeseries and /summary identical in every bit (h5py and h5diff),
 with the same solver statistics; compact, with the snow line (silicate and icy cells,
-sublimation booked) and with porous bins (psi_k per bin: phi_bins). And a compact run
+sublimation booked), with porous bins (psi_k per bin: phi_bins) and with porosity on the
+track (porosity.bins = "track", with the snow line). And a compact run
 stopped by --max-wall (exit 75, at its first step) continued from its checkpoint.
 With planetesimals per bin (direct coagulation and the d16 streaming instability, their
 thresholds lowered as in test_bin_planetesimals; 6 cells), compact and porous: both
@@ -34,6 +35,10 @@ CASES = (
     # porous bins cost ~10x: a shorter run (snapshots at 10, 31, 97, 300 yr)
     ("porous", [EVERY, "porosity.enabled=true", "output.t_end_yr=300.0",
                 "output.t_first_yr=10.0"]),
+    # porosity on the track (no psi; phi_bins from the gas at each refresh), with the
+    # snow line: silicate and icy cells have their own tracks
+    ("porous_track", [EVERY, "porosity.enabled=true", 'porosity.bins="track"',
+                      "snowline.enabled=true"]),
     ("planetesimals", [EVERY, *PLANETESIMALS, "output.t_end_yr=1e3"]),
     ("planetesimals_porous", [EVERY, *PLANETESIMALS, "porosity.enabled=true",
                               "output.t_end_yr=300.0", "output.t_first_yr=10.0"]),
