@@ -36,7 +36,8 @@
 //! Porosity on the track (options.porosity_track): no psi_k; each bin's filling factor
 //! is the single-size porosity law's phi(m_k) at its cell's gas
 //! (physics/coagulation/porosity_track.hpp), fixed between refreshes as the gas is, and
-//! the coefficients and St are those of a compact distribution with these phi_k.
+//! the coefficients and St are those of a compact distribution with these phi_k. Dust
+//! crossing the snow line takes the track's phi of the bins it arrives in.
 //!
 //! Snow line (spec §1.7, §6.3, §15.4; set_snowline()): every cell coagulates with its
 //! own monomer species (silicate inside r_snow, ice outside, as the single-size model),

@@ -56,6 +56,15 @@ TEST(SizeDistribution, JacobianMatchesFiniteDifferences) {
   expect_jacobian_exact({}, "distribution, evolving gas");
 }
 
+// Porosity on the track (porosity.bins = "track", with the snow line): the bins' St and
+// coefficients are the track's, constants of the state as the compact ones, so the
+// Jacobian stays exact.
+TEST(SizeDistribution, JacobianMatchesFiniteDifferencesOnTheTrack) {
+  expect_jacobian_exact(
+      {"porosity.enabled=true", "porosity.bins=\"track\"", "snowline.enabled=true"},
+      "distribution, porosity on the track, snow line");
+}
+
 // The limited advection's far upwind cell, per bin.
 TEST(SizeDistribution, JacobianMatchesFiniteDifferencesVanLeer) {
   expect_jacobian_exact({"transport.advection=\"van_leer\"", "gas.evolve=false"},
