@@ -228,23 +228,28 @@ TEST(SizeDistributionPorous, JacobianMatchesFiniteDifferencesSnowLine) {
 }
 
 // A run from compact MRN dust: Newton converges with this Jacobian, the mass budget
-// closes, and the aggregates grow porous (phi of the mass-dominating bin well below 1).
+// closes, and the aggregates grow porous (phi of the mass-dominating bin well below 1);
+// with psi_k per bin, and with porosity on the track (porosity.bins = "track",
+// tests/unit/physics/test_porosity_track.cpp).
 TEST(SizeDistributionPorous, RunKeepsTheBudgetAndGrowsFluffy) {
-  Simulation sim(porous_scene({"output.t_end_yr=300.0"}));
-  CvodeIntegrator cvode(sim.model(), 0.0, sim.initial_state(), sim.integrator_options());
-  cvode.advance_to(300.0 * units::kYr);
-  const std::vector<double> y(cvode.state().begin(), cvode.state().end());
-  const auto st = cvode.stats();
-  const auto* d = sim.distribution();
-  const int i = 5, k = d->dominant_bin(i, y);
-  std::printf(
-      "300 yr: %ld steps, %ld Newton iterations, %ld convergence failures, %ld "
-      "Jacobians; budget error %.1e; cell %d: bin %d (m = %.2e g), phi = %.2e\n",
-      st.nst, st.nni, st.nncf, st.nje, sim.budget_error(y), i, k, d->mass_grid().m[k],
-      d->phi(i, k, y));
-  EXPECT_LT(sim.budget_error(y), 1e-10);
-  EXPECT_LT(st.nncf, st.nst / 4);
-  EXPECT_LT(d->phi(i, k, y), 0.5);
+  for (const char* bins : {"porosity.bins=\"evolved\"", "porosity.bins=\"track\""}) {
+    Simulation sim(porous_scene({"output.t_end_yr=300.0", bins}));
+    CvodeIntegrator cvode(sim.model(), 0.0, sim.initial_state(),
+                          sim.integrator_options());
+    cvode.advance_to(300.0 * units::kYr);
+    const std::vector<double> y(cvode.state().begin(), cvode.state().end());
+    const auto st = cvode.stats();
+    const auto* d = sim.distribution();
+    const int i = 5, k = d->dominant_bin(i, y);
+    std::printf(
+        "%s, 300 yr: %ld steps, %ld Newton iterations, %ld convergence failures, %ld "
+        "Jacobians; budget error %.1e; cell %d: bin %d (m = %.2e g), phi = %.2e\n",
+        bins, st.nst, st.nni, st.nncf, st.nje, sim.budget_error(y), i, k,
+        d->mass_grid().m[k], d->phi(i, k, y));
+    EXPECT_LT(sim.budget_error(y), 1e-10) << bins;
+    EXPECT_LT(st.nncf, st.nst / 4) << bins;
+    EXPECT_LT(d->phi(i, k, y), 0.5) << bins;
+  }
 }
 
 }  // namespace
