@@ -138,7 +138,8 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! computed again.
   std::span<const double> bin_stokes_numbers(std::span<const double> y) const;
   //! St of bin k of `cell` with filling factor phi by the law of bin_stokes_numbers
-  //! (compact, the cached St, phi = 1), for AutoDiff: the derivatives by phi.
+  //! (compact or on the track, the cached St, whatever phi), for AutoDiff: the
+  //! derivatives by phi.
   template <class T>
   T bin_stokes(int cell, int k, const T& phi) const {
     if (!porous_) return T(st_[static_cast<std::size_t>(cell) * n_bins_ + k]);

@@ -101,7 +101,7 @@ std::string physics_choices(const Config& cfg) {
 // mass grid ends at model.m_max_g (DustPy's 1e5 g by default), and products beyond it do
 // not stick: where even its last bin is below St_pl, no bin converts, silently. A bin's
 // largest St is its compact one (a lower phi lowers St in both drag regimes, spec §2),
-// taken with the gas at the start.
+// taken with the gas at the start; on the porosity track, the track's (bin_stokes).
 std::string unreachable_st_pl_warning(const Config& cfg, const Grid& grid,
                                       const SizeDistribution* dist) {
   if (!dist || !cfg.flag("planetesimals.coagulation")) return "";
@@ -119,11 +119,27 @@ std::string unreachable_st_pl_warning(const Config& cfg, const Grid& grid,
   s << "WARNING: no bin can reach planetesimals.St_pl = " << st_pl
     << ", so planetesimals.coagulation converts nothing: the mass grid ends at "
     << dist->mass_grid().m[static_cast<std::size_t>(top)]
-    << " g (model.m_max_g = " << cfg.real("model.m_max_g")
-    << "), whose compact St is at most " << st_top << " (at " << grid.r_c(where) / kAu
+    << " g (model.m_max_g = " << cfg.real("model.m_max_g") << "), whose "
+    << (dist->porosity_track() ? "St on the porosity track" : "compact St")
+    << " is at most " << st_top << " (at " << grid.r_c(where) / kAu
     << " au, the gas at the start); raise model.m_max_g (porous ice on the MMSN reaches "
        "St = 10 near 1e12 g)\n";
   return s.str();
+}
+
+// The porosity track without either compaction floor: measured far from the evolved bins
+// (tests/bench/results/porosity_track.md), said, not refused.
+std::string track_without_floors_warning(const Config& cfg,
+                                         const SizeDistribution* dist) {
+  if (!dist || !dist->porosity_track() || cfg.flag("porosity.gas_compaction") ||
+      cfg.flag("porosity.self_gravity"))
+    return "";
+  return "WARNING: porosity.bins = \"track\" with both compaction floors off "
+         "(porosity.gas_compaction, porosity.self_gravity): the single-size law's track "
+         "then leaves aggregates of 1 g .. 1e10 g 100-1000x fluffier than the evolved "
+         "bins, and on the porous MMSN no St >= 10 body forms where they form some "
+         "(tests/bench/results/porosity_track.md); use porosity.bins = \"evolved\" or "
+         "turn a floor on\n";
 }
 
 }  // namespace
@@ -216,6 +232,7 @@ std::string Simulation::summary() const {
       << " with output.t_first_yr = t_end_yr = " << cfg_.real("output.t_end_yr")
       << " yr: one snapshot after t = 0; lower t_first_yr for more\n";
   s << unreachable_st_pl_warning(cfg_, grid_, distribution_);
+  s << track_without_floors_warning(cfg_, distribution_);
   if (growth_) {  // spec §0: the contact mechanics behind the collision parameters
     s << physics::contact_summary("ice", material_from_config(cfg_, "ice")) << "\n";
     s << physics::contact_summary("silicate", material_from_config(cfg_, "sil")) << "\n";
