@@ -37,6 +37,9 @@ from .reader import as_run
 # scene tables whose keys may differ between the two runs: the model itself and how it is
 # integrated and written
 MODEL_TABLES = ("model", "solver", "output", "meta")
+# keys outside those tables that choose the model too: how a size distribution carries
+# porosity (physics/coagulation/porosity_track.hpp)
+MODEL_KEYS = ("porosity.bins",)
 # mass-dominating-particle fields compared as ratios, when both runs write them
 RATIO_FIELDS = ("St", "m", "phi")
 # /summary scalars compared (a run writes those its scene has)
@@ -88,10 +91,11 @@ def _flatten(table, prefix=""):
 
 
 def _warn_scene_differences(run, reference):
-    """Warn about scene keys outside MODEL_TABLES whose values differ."""
+    """Warn about scene keys outside MODEL_TABLES and MODEL_KEYS whose values differ."""
     a, b = _flatten(run.config), _flatten(reference.config)
     differ = sorted(k for k in set(a) | set(b)
-                    if k.split(".")[0] not in MODEL_TABLES and a.get(k) != b.get(k))
+                    if k.split(".")[0] not in MODEL_TABLES and k not in MODEL_KEYS
+                    and a.get(k) != b.get(k))
     if differ:
         listed = ", ".join(f"{k} = {a.get(k)!r} / {b.get(k)!r}" for k in differ[:8])
         more = f" and {len(differ) - 8} more" if len(differ) > 8 else ""

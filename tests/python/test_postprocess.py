@@ -986,7 +986,7 @@ def check_distribution_limits_at_rho_int(tmp):
 def check_model_error(tmp):
     """compare_runs of a run against itself is exactly nothing; against a copy with one
     cell's Sigma_d x 1.25 and St x 2, m_out_inner + 1 % of the initial dust and another
-    [model], it gives those numbers and no scene warning; a copy with another disk.alpha
+    [model] and porosity.bins, it gives those numbers and no scene warning; a copy with another disk.alpha
     is warned about by key; other grids are refused, by the command line too (status 1);
     the command line writes both tables as CSV (--csv, with --r-au)."""
     path = os.path.join(tmp, "model_error_ref.h5")
@@ -1007,7 +1007,8 @@ def check_model_error(tmp):
         f["snapshots/sigma_d"][:, k] *= 1.25
         f["snapshots/St"][:] *= 2.0
         f["snapshots/m_out_inner"][:] += 0.01 * m0
-        f.attrs["config_toml"] = CONFIG_TOML + '\n[model]\nkind = "distribution"\n'
+        f.attrs["config_toml"] = (CONFIG_TOML + '\n[model]\nkind = "distribution"\n'
+                                  '\n[porosity]\nbins = "track"\n')
     # a distribution's mean mass, which the single size's m stands for
     for name, value in ((other, {"m": 1e-3}), (path, {"m": 1e-3, "m_mean": 2.5e-4})):
         with h5py.File(name, "a") as f:
@@ -1015,7 +1016,7 @@ def check_model_error(tmp):
                 write_dataset(f["snapshots"], field, np.full_like(ref["sigma_d"], v), "g",
                               field, extendible=True)
     with warnings.catch_warnings():
-        warnings.simplefilter("error")          # a [model] difference is not warned about
+        warnings.simplefilter("error")  # [model] and porosity.bins: not warned about
         profiles, _ = model_error.compare_runs(other, path, times_yr=chosen)
     assert np.array_equal(profiles["t_yr"], chosen), profiles["t_yr"]
     i = [int(np.argmin(np.abs(ref["time"] - t))) for t in profiles["t_yr"]]
