@@ -10,18 +10,15 @@ Usage: front_arrival.py RUN.h5 [RUN2.h5 ...] [--field St] [--value 1e-4] [--radi
 (tests/bench/results/porosity_track.md)."""
 import argparse
 
-import h5py
 import numpy as np
+
+from porous_mmsn import open_run  # readable while its run still writes it (SWMR)
 
 
 def arrival_times(path, radii, field, value):
     """Per radius: (cell centre [au], first snapshot time [yr] with the field >= value,
     or nan)."""
-    try:  # readable while its run still writes it (SWMR)
-        f = h5py.File(path, "r", swmr=True, libver="latest")
-    except OSError:
-        f = h5py.File(path, "r")
-    with f:
+    with open_run(path) as f:
         r = f["grid/r_c"][:]
         t = f["snapshots/time"][:]
         x = f[f"snapshots/{field}"][:]
