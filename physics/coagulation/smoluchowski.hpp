@@ -41,14 +41,29 @@
 //!   the bin's collision rate: tests/bench/results/porous_newton.md).
 //! * A sticking product gains its partners' volumes plus the voids of its rule, m_p u_p -
 //!   m_i u_i - m_j u_j with u_p = u_i e^d (d_ij = ln(u_p / u_i), porosity.hpp) at the
-//!   bins' u, split into its two bins in proportion to mass. Inside the physical cone
-//!   psi >= sigma >= 0 (u = psi/sigma) that is the product's volume m_p u_p.
+//!   bins' u. Inside the physical cone psi >= sigma >= 0 (u = psi/sigma) that is the
+//!   product's volume m_p u_p.
+//! * The product's mass is split between its two bins (above), and its volume so that
+//!   each part carries the specific volume of the product's own growth step extended to
+//!   that bin's mass: the part of mass fraction f in bin b gets f (m_b / m_p)^s m_p u_p,
+//!   s = d / ln(m_p / m_i) the step's slope d ln u / d ln m, |s| <= kMaxSplitSlope [C:
+//!   ours]. Like the mass split, which conserves mass and number but not the higher
+//!   moments, this does not conserve the volume: it adds (f_lo (m_k/m_p)^s + f_hi
+//!   (m_{k+1}/m_p)^s - 1) m_p u_p, of first order in the bins' width. Splitting the
+//!   volume in proportion to mass instead (u_p in both bins, which conserves it) gives
+//!   the mass that the split moves up the grid (its mass-weighted ln m gains about
+//!   ln(m_{k+1}/m_k)/2 per unit of ln m grown: the scheme's numerical diffusion) no
+//!   growth of its volume. That error accumulates along the mass axis: with a constant
+//!   hit-and-stick slope, where the exact phi is (m/m0)^-0.58, phi came out ~100x too
+//!   dense at 1e-4 g on 7 bins per decade, and a normalised split (parts on the step,
+//!   total conserved) still accumulates a first-order error. With a constant slope this
+//!   split is exact (CoagulationVolumeSplit.*; tests/bench/results/porosity_split.md).
 //! * Remnants keep their parents' specific volume, and so do fragments (spec §15.3) up to
 //!   the fluffiest u of the bin they land in (fragment_u_ceiling, porosity.hpp): psi is
 //!   conserved where that ceiling does not bind, and only removed where it does.
 //! * A relaxation up to the static compaction floor per bin (spec §4.3-§4.4, §15.3) may
 //!   be added.
-//! So psi changes only by the voids, the ceiling and the floors.
+//! So psi changes only by the voids, the split, the ceiling and the floors.
 //!
 //! A bin's u (the kernel, the product rule, the floors) follows the state by the one rule
 //! of bin_porosity() (porosity.hpp), with the coefficients' empty-bin scale. The Jacobian
@@ -60,8 +75,10 @@
 //! sigma_{N-1}[, psi_0 ...]), row-major.
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <span>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "physics/coagulation/mass_grid.hpp"
@@ -109,6 +126,13 @@ struct CellCoefficients {
   std::vector<double> dlnfloor_dlnu, drelax_dgrowth;
 };
 
+//! Largest |slope| d ln u / d ln m of a sticking product's growth step along which its
+//! volume is split between its two bins (Smoluchowski::volume_split) [-]: the physical
+//! slopes lie within it (hit-and-stick 0.58 and compression 1/8 to 1/5, spec §4.3;
+//! -1 for a fluffy target sweeping up compact grains); steeper ones come from partners
+//! of very different porosity, where extending the step over a bin is not meaningful.
+inline constexpr double kMaxSplitSlope = 1.0;
+
 //! Softplus sharpness of the push up to the floor (as physics/compaction.hpp) [-].
 inline constexpr double kFloorSharpness = 100.0;
 
@@ -146,6 +170,11 @@ class Smoluchowski {
         }
         p.frac_lo = p.gain_lo / mp;
         p.frac_hi = p.gain_hi / mp;
+        if (p.k >= 0) {
+          p.ln_step = std::log1p(m[j] / m[i]);
+          p.ln_lo = p.k == i ? -p.ln_step : std::log(m[p.k] / mp);
+          p.ln_hi = std::log(m[p.k + 1] / mp);
+        }
         if (i - j > crater_bins_) {  // cratering: remnant m_i - x, fragments (1 + e) m_j
           p.crater = true;
           const double x = frag_.excavated_mass * m[j];
@@ -235,14 +264,15 @@ class Smoluchowski {
             const double d = has_d ? c.ln_u_ratio[ij] : 0.0;
             const double voids = r_stick * product_voids(m[i], m[j], u_[i].u, u_[j].u, d);
             const double moved_j = m[j] * vj + voids;
+            const VolumeSplit g = volume_split(p, d);
             dpsi[j] -= m[j] * vj;
             if (p.k == i) {
-              dpsi[i] += p.frac_lo * moved_j - p.frac_hi * m[i] * vt;
+              dpsi[i] += g.lo * moved_j - g.lo_left * m[i] * vt;
             } else {
               dpsi[i] -= m[i] * vt;
-              dpsi[p.k] += p.frac_lo * (m[i] * vt + moved_j);
+              dpsi[p.k] += g.lo * (m[i] * vt + moved_j);
             }
-            dpsi[p.k + 1] += p.frac_hi * (m[i] * vt + moved_j);
+            dpsi[p.k + 1] += g.hi * (m[i] * vt + moved_j);
           }
         }
         const double f_frag = pf * kk, r_frag = pf * rate;
@@ -407,16 +437,30 @@ class Smoluchowski {
                 at(n + row, n + j) += cr * gv_j * u_[j].dlnu_dpsi;
                 if (has_dk) kernel_terms(n + row, cr * v);
               };
+              const VolumeSplit g = volume_split(p, d);
               vol_at(j, 0.0, -m[j]);
               if (p.k == i) {
-                vol_at(i, -p.frac_hi * m[i], p.frac_lo * m[j]);
+                vol_at(i, -g.lo_left * m[i], g.lo * m[j]);
               } else {
                 vol_t(i, -m[i]);
-                vol_at(p.k, p.frac_lo * m[i], p.frac_lo * m[j]);
+                vol_at(p.k, g.lo * m[i], g.lo * m[j]);
               }
-              voids_at(p.k, p.frac_lo);
-              vol_at(p.k + 1, p.frac_hi * m[i], p.frac_hi * m[j]);
-              voids_at(p.k + 1, p.frac_hi);
+              voids_at(p.k, g.lo);
+              vol_at(p.k + 1, g.hi * m[i], g.hi * m[j]);
+              voids_at(p.k + 1, g.hi);
+              // the split itself moves with d(u_i, u_j): the product's volume rate P
+              // times dg/dd d d/d ln u into each of its bins
+              if (g.dlo_dd != 0.0 || g.dhi_dd != 0.0) {
+                const double pv = m[i] * vt + m[j] * vj + rate * v;
+                for (const auto& [row, dg] :
+                     {std::pair{p.k, g.dlo_dd}, std::pair{p.k + 1, g.dhi_dd}}) {
+                  const double a_i = pv * dg * gd_i, a_j = pv * dg * gd_j;
+                  at(n + row, i) += a_i * u_[i].dlnu_dsigma;
+                  at(n + row, n + i) += a_i * u_[i].dlnu_dpsi;
+                  at(n + row, j) += a_j * u_[j].dlnu_dsigma;
+                  at(n + row, n + j) += a_j * u_[j].dlnu_dpsi;
+                }
+              }
             }
             continue;
           }
@@ -471,11 +515,28 @@ class Smoluchowski {
   }
 
  private:
+  struct Pair;
+
+  //! The volume a sticking product leaves in its bins k and k + 1 per unit of its own
+  //! volume m_p u_p: g_lo, g_hi, 1 - g_lo (without cancelling terms, for k = i) and
+  //! their derivatives by d.
+  struct VolumeSplit {
+    double lo = 0.0, hi = 0.0, lo_left = 0.0, dlo_dd = 0.0, dhi_dd = 0.0;
+  };
+
+  //! The volume split of the product of pair p at d = ln(u_p / u_i) (header): the part
+  //! of mass fraction f of the product that goes to bin b carries the specific volume of
+  //! the product's own growth step extended to m_b, g = f (m_b / m_p)^s, with the step's
+  //! slope s = d / ln(m_p / m_i) bounded to |s| <= kMaxSplitSlope.
+  static VolumeSplit volume_split(const Pair& p, double d);
+
   struct Pair {
     int k = -1;           //!< lower bin of the sticking product; -1: beyond the grid
     double loss_i = 0.0;  //!< mass change of bin i per sticking collision [g]
     double gain_lo = 0.0, gain_hi = 0.0;  //!< mass into bins k, k+1 [g]
     double frac_lo = 0.0, frac_hi = 0.0;  //!< their fractions of m_i + m_j [-]
+    double ln_step = 0.0;  //!< ln(m_p / m_i) = ln(1 + m_j / m_i) of the product [-]
+    double ln_lo = 0.0, ln_hi = 0.0;  //!< ln(m_k / m_p) <= 0, ln(m_{k+1} / m_p) >= 0 [-]
     bool crater = false;
     int frag_bin = 0;                   //!< bin of the largest fragment
     double frag_mass = 0.0;             //!< mass of the fragments [g]
@@ -647,5 +708,22 @@ class Smoluchowski {
   mutable std::vector<double> slope_psi_, slope_mass_;
   mutable std::vector<BinPorosity> u_;
 };
+
+inline Smoluchowski::VolumeSplit Smoluchowski::volume_split(const Pair& p, double d) {
+  if (p.frac_hi == 0.0) return {p.frac_lo, p.frac_hi, p.frac_hi, 0.0, 0.0};
+  const double slope = d / p.ln_step;
+  const bool bounded = std::abs(slope) > kMaxSplitSlope;
+  const double s = bounded ? std::copysign(kMaxSplitSlope, slope) : slope;
+  VolumeSplit g;
+  g.lo = p.frac_lo * std::exp(s * p.ln_lo);
+  g.hi = p.frac_hi * std::exp(s * p.ln_hi);
+  // 1 - f_lo e^(s ln_lo) with f_lo = 1 - f_hi, written without cancelling terms
+  g.lo_left = p.frac_hi - p.frac_lo * std::expm1(s * p.ln_lo);
+  if (!bounded) {
+    g.dlo_dd = g.lo * p.ln_lo / p.ln_step;
+    g.dhi_dd = g.hi * p.ln_hi / p.ln_step;
+  }
+  return g;
+}
 
 }  // namespace panoptic::physics::coagulation

@@ -163,29 +163,6 @@ TEST(CoagulationErosion, FragmentsAndRemnantKeepTheirParentsVolumeUpToTheCeiling
   EXPECT_GT(free, 3);
 }
 
-// The psi a state gains by sticking alone, sum over pairs of (1 - p) R [(m_i + m_j) u_i
-// e^d - m_i u_i - m_j u_j] (products inside the grid), from the coefficients and
-// independently of the engine's split: eroding pairs must add no volume.
-double sticking_volume_gain(const Smoluchowski& eng, const CellCoefficients& c,
-                            const std::vector<double>& sigma,
-                            const std::vector<double>& psi) {
-  const int n = eng.size();
-  const auto& m = eng.grid().m;
-  double gain = 0.0;
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b <= a; ++b) {
-      if (m[a] + m[b] >= m[n - 1]) continue;
-      const std::size_t ab = static_cast<std::size_t>(a) * n + b;
-      const double ua = psi[a] / sigma[a], ub = psi[b] / sigma[b];
-      const double r = (a == b ? 0.5 : 1.0) * c.kernel[ab] * (sigma[a] / m[a]) *
-                       (sigma[b] / m[b]) * (1.0 - c.p_frag[ab]);
-      // (m_a + m_b) u_a e^d - m_a u_a - m_b u_b without the cancelling terms
-      const double d = c.ln_u_ratio[ab];
-      gain += r * (m[a] * ua * std::expm1(d) + m[b] * (ua * std::exp(d) - ub));
-    }
-  return gain;
-}
-
 TEST(CoagulationErosion, ClosedBoxConservesMassAndBooksTheVolume) {
   // compact, 5 au MMSN, bins to 100 g: erosion at 1 m/s (eps 2), fragmentation at 5 m/s,
   // from an MRN-like spread to 1e-2 g, 300 yr of CVODE with the engine's Jacobian

@@ -19,6 +19,7 @@
 #include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
+#include "tests/unit/support/coagulation_checks.hpp"
 #include "tests/unit/support/jacobian_check.hpp"
 
 namespace panoptic {
@@ -155,10 +156,17 @@ TEST(SizeDistributionPorous, CoagulationConservesMassAndBooksTheVolume) {
         const double rate =
             (a == b ? 0.5 : 1.0) * c.kernel[ab] * (sa / m[a]) * (sb / m[b]);
         const double p = c.p_frag.empty() ? 0.0 : c.p_frag[ab];
-        // (m_a + m_b) u_a e^d - m_a u_a - m_b u_b without the cancelling terms
+        // the voids (m_a + m_b) u_a e^d - m_a u_a - m_b u_b without the cancelling
+        // terms, and what the split adds to the product's volume, the partners' own
+        // psi/sigma plus the voids (coagulation_checks.hpp)
         const double d_ab = c.ln_u_ratio[ab];
+        const double voids =
+            m[a] * ua * std::expm1(d_ab) + m[b] * (ua * std::exp(d_ab) - ub);
+        const double own = m[a] * y[L.index(i, d->psi_slot(a))] / sa +
+                           m[b] * y[L.index(i, d->psi_slot(b))] / sb;
         gain += (1.0 - p) * rate *
-                (m[a] * ua * std::expm1(d_ab) + m[b] * (ua * std::exp(d_ab) - ub));
+                (voids + physics::coagulation::split_factor_minus_one(m, a, b, d_ab) *
+                             (own + voids));
       }
     // the engine with fragments that keep their parents' volume books exactly the
     // sticking gain; the fragment ceiling (porosity.hpp) only removes volume

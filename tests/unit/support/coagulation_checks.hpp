@@ -113,4 +113,56 @@ inline std::pair<double, double> imbalance(const Smoluchowski& eng,
   return {std::abs(s) / a, psi.empty() ? 0.0 : std::abs(sp) / ap};
 }
 
+//! G - 1, G the factor by which the two-bin split of the sticking product of bins a >=
+//! b multiplies its volume (smoluchowski.hpp): the product m_p = m_a + m_b goes to the
+//! bins k, k + 1 around it as eps m_k and (1 - eps) m_{k+1} (the split that conserves
+//! mass and number), and each part's volume is extended along the product's step to its
+//! bin's mass by (m_bin / m_p)^s, s = d / ln(m_p / m_a) bounded to |s| <=
+//! kMaxSplitSlope. Written from the grid and these formulas alone, without cancelling
+//! terms where m_p rounds to m_a (k = a: the mass fraction that moves up is m_b m_{a+1}
+//! / (Delta m_p), Brauer et al. 2008 A.2).
+inline double split_factor_minus_one(const std::vector<double>& m, int a, int b,
+                                     double d) {
+  const double mp = m[a] + m[b];
+  int k = static_cast<int>(std::upper_bound(m.begin(), m.end(), mp) - m.begin()) - 1;
+  k = std::max(k, a);
+  const double ln_step = std::log1p(m[b] / m[a]);
+  const double s = std::clamp(d / ln_step, -kMaxSplitSlope, kMaxSplitSlope);
+  const double delta = m[k + 1] - m[k];
+  const double up = std::exp(s * std::log(m[k + 1] / mp));
+  if (k == a) {
+    const double f_hi = m[b] * m[k + 1] / (delta * mp);
+    return std::expm1(-s * ln_step) + f_hi * (up - std::exp(-s * ln_step));
+  }
+  const double eps = (m[k + 1] - mp) / delta;
+  return eps * m[k] / mp * std::exp(s * std::log(m[k] / mp)) +
+         (1.0 - eps) * m[k + 1] / mp * up - 1.0;
+}
+
+//! The psi a state gains by sticking alone, sum over pairs of (1 - p) R [V + (G - 1)
+//! (m_a u_a + m_b u_b + V)] with the voids V = m_p u_a e^d - m_a u_a - m_b u_b
+//! (products inside the grid; u = psi / sigma), from the coefficients and independently
+//! of the engine's booking.
+inline double sticking_volume_gain(const Smoluchowski& eng, const CellCoefficients& c,
+                                   const std::vector<double>& sigma,
+                                   const std::vector<double>& psi) {
+  const int n = eng.size();
+  const auto& m = eng.grid().m;
+  double gain = 0.0;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b <= a; ++b) {
+      if (m[a] + m[b] >= m[n - 1]) continue;
+      const std::size_t ab = static_cast<std::size_t>(a) * n + b;
+      const double pf = c.p_frag.empty() ? 0.0 : c.p_frag[ab];
+      const double r = (a == b ? 0.5 : 1.0) * c.kernel[ab] * (sigma[a] / m[a]) *
+                       (sigma[b] / m[b]) * (1.0 - pf);
+      const double ua = psi[a] / sigma[a], ub = psi[b] / sigma[b], d = c.ln_u_ratio[ab];
+      // without the cancelling terms
+      const double voids = m[a] * ua * std::expm1(d) + m[b] * (ua * std::exp(d) - ub);
+      gain += r * (voids +
+                   split_factor_minus_one(m, a, b, d) * (m[a] * ua + m[b] * ub + voids));
+    }
+  return gain;
+}
+
 }  // namespace panoptic::physics::coagulation
