@@ -113,6 +113,24 @@ inline std::pair<double, double> imbalance(const Smoluchowski& eng,
   return {std::abs(s) / a, psi.empty() ? 0.0 : std::abs(sp) / ap};
 }
 
+//! sum_k dpsi_k/dt and sum_k |dpsi_k/dt| of the engine's right-hand side [g cm^-2 s^-1].
+struct VolumeRates {
+  double sum = 0.0, abs = 0.0;
+};
+inline VolumeRates volume_rates(const Smoluchowski& eng, const CellCoefficients& c,
+                                const std::vector<double>& sigma,
+                                const std::vector<double>& psi) {
+  const int n = eng.size();
+  std::vector<double> ds(n), dp(n);
+  eng.rhs(c, sigma, psi, ds, dp);
+  VolumeRates r;
+  for (double v : dp) {
+    r.sum += v;
+    r.abs += std::abs(v);
+  }
+  return r;
+}
+
 //! G - 1, G the factor by which the two-bin split of the sticking product of bins a >=
 //! b multiplies its volume (smoluchowski.hpp): the product m_p = m_a + m_b goes to the
 //! bins k, k + 1 around it as eps m_k and (1 - eps) m_{k+1} (the split that conserves
