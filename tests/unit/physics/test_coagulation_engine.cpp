@@ -291,17 +291,8 @@ TEST(CoagulationEngine, VolumeMeasureBookedBySplitAndKeptByFragments) {
     }
   const VolumeRates off = volume_rates(eng, c, sigma, psi_off);
   // the partners carry their own signed volume, the voids at the bins' u are zero: the
-  // split's factor G alone, (G - 1) (m_i psi_i/sigma_i + m_j psi_j/sigma_j) per collision
-  double split_off = 0.0;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j <= i; ++j) {
-      if (m[i] + m[j] >= m[n - 1]) continue;
-      const std::size_t ij = static_cast<std::size_t>(i) * n + j;
-      const double r =
-          (i == j ? 0.5 : 1.0) * c.kernel[ij] * (sigma[i] / m[i]) * (sigma[j] / m[j]);
-      split_off += r * split_factor_minus_one(m, i, j, c.ln_u_ratio[ij]) *
-                   (m[i] * psi_off[i] / sigma[i] + m[j] * psi_off[j] / sigma[j]);
-    }
+  // split's factor alone
+  const double split_off = sticking_volume_gain(eng, c, sigma, psi_off);
   EXPECT_LT(std::abs(off.sum - split_off), 1e-13 * off.abs);
   // fragmentation and cratering only: fragments and remnants keep their parents' volume
   auto f = synthetic_cell(eng, true, true);

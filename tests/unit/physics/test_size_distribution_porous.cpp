@@ -133,7 +133,6 @@ TEST(SizeDistributionPorous, CoagulationConservesMassAndBooksTheVolume) {
   std::vector<double> ydot(y.size(), 0.0);
   sim.model().rhs(0.0, y, ydot);
   const auto& L = sim.model().layout();
-  const auto& m = d->mass_grid().m;
   double worst_mass = 0.0, worst_volume = 0.0, ceiling_share = 0.0;
   for (int i = 0; i < sim.grid().n_cells(); ++i) {
     const auto c = d->coefficients(i, y);
@@ -144,42 +143,18 @@ TEST(SizeDistributionPorous, CoagulationConservesMassAndBooksTheVolume) {
       dv += ydot[L.index(i, d->psi_slot(k))];
       dv_abs += std::abs(ydot[L.index(i, d->psi_slot(k))]);
     }
-    double gain = 0.0;
-    for (int a = 0; a < nb; ++a)
-      for (int b = 0; b <= a; ++b) {
-        if (m[a] + m[b] >= m[nb - 1]) continue;  // beyond the grid: no sticking
-        const std::size_t ab = static_cast<std::size_t>(a) * nb + b;
-        const double sa = y[L.index(i, d->bin_slot(a))],
-                     sb = y[L.index(i, d->bin_slot(b))];
-        const double ua = d->porosity(i, a, y).u;  // psi/sigma to e/sigma (bin_porosity)
-        const double ub = d->porosity(i, b, y).u;
-        const double rate =
-            (a == b ? 0.5 : 1.0) * c.kernel[ab] * (sa / m[a]) * (sb / m[b]);
-        const double p = c.p_frag.empty() ? 0.0 : c.p_frag[ab];
-        // the voids (m_a + m_b) u_a e^d - m_a u_a - m_b u_b without the cancelling
-        // terms, and what the split adds to the product's volume, the partners' own
-        // psi/sigma plus the voids (coagulation_checks.hpp)
-        const double d_ab = c.ln_u_ratio[ab];
-        const double voids =
-            m[a] * ua * std::expm1(d_ab) + m[b] * (ua * std::exp(d_ab) - ub);
-        const double own = m[a] * y[L.index(i, d->psi_slot(a))] / sa +
-                           m[b] * y[L.index(i, d->psi_slot(b))] / sb;
-        gain += (1.0 - p) * rate *
-                (voids + physics::coagulation::split_factor_minus_one(m, a, b, d_ab) *
-                             (own + voids));
-      }
     // the engine with fragments that keep their parents' volume books exactly the
     // sticking gain; the fragment ceiling (porosity.hpp) only removes volume
-    std::vector<double> s(nb), p(nb), ds(nb), dp(nb);
+    std::vector<double> s(nb), p(nb);
     for (int k = 0; k < nb; ++k) {
       s[k] = y[L.index(i, d->bin_slot(k))];
       p[k] = y[L.index(i, d->psi_slot(k))];
     }
+    const double gain = physics::coagulation::sticking_volume_gain(d->engine(), c, s, p);
     auto free_fragments = c;
     free_fragments.fragment_u_cap.clear();
-    d->engine().rhs(free_fragments, s, p, ds, dp);
-    double dv_free = 0.0;
-    for (double v : dp) dv_free += v;
+    const double dv_free =
+        physics::coagulation::volume_rates(d->engine(), free_fragments, s, p).sum;
     worst_mass = std::max(worst_mass, std::abs(dm) / dm_abs);
     worst_volume = std::max(worst_volume, std::abs(dv_free - gain) / dv_abs);
     EXPECT_GE(dv_free - dv, -1e-15 * dv_abs) << "cell " << i;  // 0 where none fragment

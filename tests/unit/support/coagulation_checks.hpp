@@ -158,9 +158,10 @@ inline double split_factor_minus_one(const std::vector<double>& m, int a, int b,
 }
 
 //! The psi a state gains by sticking alone, sum over pairs of (1 - p) R [V + (G - 1)
-//! (m_a u_a + m_b u_b + V)] with the voids V = m_p u_a e^d - m_a u_a - m_b u_b
-//! (products inside the grid; u = psi / sigma), from the coefficients and independently
-//! of the engine's booking.
+//! (m_a w_a + m_b w_b + V)] (products inside the grid), independently of the engine's
+//! booking: the partners carry their own volumes w = psi / sigma, the voids V = m_p u_a
+//! e^d - m_a u_a - m_b u_b are taken at the bins' u (bin_porosity with the
+//! coefficients' empty-bin scale), G is the split's factor above.
 inline double sticking_volume_gain(const Smoluchowski& eng, const CellCoefficients& c,
                                    const std::vector<double>& sigma,
                                    const std::vector<double>& psi) {
@@ -174,11 +175,13 @@ inline double sticking_volume_gain(const Smoluchowski& eng, const CellCoefficien
       const double pf = c.p_frag.empty() ? 0.0 : c.p_frag[ab];
       const double r = (a == b ? 0.5 : 1.0) * c.kernel[ab] * (sigma[a] / m[a]) *
                        (sigma[b] / m[b]) * (1.0 - pf);
-      const double ua = psi[a] / sigma[a], ub = psi[b] / sigma[b], d = c.ln_u_ratio[ab];
+      const double ua = bin_porosity(sigma[a], psi[a], c.empty_scale).u;
+      const double ub = bin_porosity(sigma[b], psi[b], c.empty_scale).u;
+      const double d = c.ln_u_ratio[ab];
       // without the cancelling terms
       const double voids = m[a] * ua * std::expm1(d) + m[b] * (ua * std::exp(d) - ub);
-      gain += r * (voids +
-                   split_factor_minus_one(m, a, b, d) * (m[a] * ua + m[b] * ub + voids));
+      const double own = m[a] * psi[a] / sigma[a] + m[b] * psi[b] / sigma[b];
+      gain += r * (voids + split_factor_minus_one(m, a, b, d) * (own + voids));
     }
   return gain;
 }
