@@ -359,17 +359,24 @@ inline CellCoefficients cell_coefficients(
     // spec §4.4 with physics/compaction.hpp's constants: t_relax = kRelaxFraction
     // min(t_grow, kRelaxCapOmega/Omega), t_grow the bin's own growth time, its sticking
     // gain of mass per unit mass from partners no more massive than itself,
-    // sum_{j <= k} K_kj n_j m_j / m_k [C] (the single size's t_grow, from partners eps m,
-    // eps < 1). A larger partner carries the bin's particle off rather than growing it,
-    // and leaves the bin's u as it is; counted, it made t_relax of small bins among
-    // giants m_j/m_k shorter, its push's tail held their phi up to 19 % above the floor
-    // and Newton stalled there (tests/bench/results/porous_newton.md, last section).
-    // Only bins that hold mass count (a slightly negative bin, integration error, would
-    // make t_relax negative: an unstable push).
+    // sum_{j <= k} K_kj (1 - p_kj) n_j m_j / m_k [C] (the single size's t_grow, from
+    // partners eps m, eps < 1, net of fragmentation and erosion as there,
+    // physics/growth_rates.hpp: collisions that fragment or crater the bin's particle do
+    // not grow it; counted, they stiffened the push of the sparse bins above the
+    // fragmentation barrier, tests/bench/results/porous_cost.md). A larger partner
+    // carries the bin's particle off rather than growing it, and leaves the bin's u as it
+    // is; counted, it made t_relax of small bins among giants m_j/m_k shorter, its push's
+    // tail held their phi up to 19 % above the floor and Newton stalled there
+    // (tests/bench/results/porous_newton.md, last section). Only bins that hold mass
+    // count (a slightly negative bin, integration error, would make t_relax negative: an
+    // unstable push).
     double growth = 0.0;
     for (int j = 0; j <= k; ++j)
-      if (sigma[j] > 0.0)
-        growth += c.kernel[static_cast<std::size_t>(k) * n + j] * sigma[j] / m[k];
+      if (sigma[j] > 0.0) {
+        const std::size_t kj = static_cast<std::size_t>(k) * n + j;
+        const double stick = losses ? c.kernel[kj] * (1.0 - c.p_frag[kj]) : c.kernel[kj];
+        growth += stick * sigma[j] / m[k];
+      }
     const double t_grow = 1.0 / (growth + 1e-30);
     const double t_soft = soft_min(t_grow, kRelaxCapOmega / gas.omega_k);
     c.relax_rate[k] = 1.0 / (kRelaxFraction * t_soft);

@@ -577,16 +577,24 @@ class Smoluchowski {
       // through r_k: dT/d growth_k, then growth_k by sigma_j and ln u_j
       const double t_g = -psi[k] * sp * c.drelax_dgrowth[k] / m[k];
       if (t_g == 0.0) continue;
-      double own = 0.0;  // d growth_k m_k / d ln u_k: every K_kj (j <= k) by u_k
+      // growth_k counts the sticking collisions, K_kj (1 - p_kj) (cell_coefficients):
+      // with losses, p_kj moves with u_k and u_j too
+      const bool losses = !c.p_frag.empty();
+      const bool d_loss = losses && !c.dp_dlnu.empty();
+      double own = 0.0;  // d growth_k m_k / d ln u_k: every pair (k, j <= k) by u_k
       for (int j = 0; j <= k; ++j) {
         if (!(sigma[j] > 0.0)) continue;
         const std::size_t kj = static_cast<std::size_t>(k) * n + j;
+        const std::size_t jk = static_cast<std::size_t>(j) * n + k;
         const double kk = c.kernel[kj];
-        at(n + k, j) += t_g * kk;
-        own += kk * c.dlnk_dlnu[kj] * sigma[j];
-        if (j != k)
-          by_ln_u(n + k, j,
-                  t_g * kk * c.dlnk_dlnu[static_cast<std::size_t>(j) * n + k] * sigma[j]);
+        const double stick = losses ? kk * (1.0 - c.p_frag[kj]) : kk;
+        at(n + k, j) += t_g * stick;
+        own += stick * c.dlnk_dlnu[kj] * sigma[j];
+        if (d_loss) own -= kk * c.dp_dlnu[kj] * sigma[j];
+        if (j == k) continue;
+        double by_u_j = t_g * stick * c.dlnk_dlnu[jk] * sigma[j];
+        if (d_loss) by_u_j -= t_g * kk * c.dp_dlnu[jk] * sigma[j];
+        by_ln_u(n + k, j, by_u_j);
       }
       by_ln_u(n + k, k, t_g * own);
     }
