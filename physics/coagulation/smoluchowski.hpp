@@ -122,7 +122,8 @@ struct CellCoefficients {
   //! (for i = j the first holds the derivative by the bin's u, the second 0) [-]
   std::vector<double> dd_dlnu_i, dd_dlnu_j;
   //! porous, Jacobian only, per bin: d ln floor_k / d ln u_k (through St_k) [-] and
-  //! d relax_rate_k / d growth_k, growth_k = sum_j K_kj sigma_j / m_k [-] (spec §4.4)
+  //! d relax_rate_k / d growth_k, growth_k = sum_{j <= k} K_kj (1 - p_kj) sigma_j / m_k
+  //! [-] (spec §4.4)
   std::vector<double> dlnfloor_dlnu, drelax_dgrowth;
 };
 
@@ -549,9 +550,9 @@ class Smoluchowski {
 
   //! The floors' rows of the Jacobian: T_k = -psi_k softplus(z_k) r_k, z_k = ln floor_k
   //! + ln u_k (spec §4.4), through psi_k, u_k (z_k and, by St_k, floor_k) and r_k =
-  //! r(growth_k), growth_k = sum_{j <= k} K_kj sigma_j / m_k over sigma_j > 0
-  //! (cell_coefficients), which moves with every such sigma_j and, through K_kj, every
-  //! such u_j. Uses u_ of jacobian().
+  //! r(growth_k), growth_k = sum_{j <= k} K_kj (1 - p_kj) sigma_j / m_k over sigma_j > 0
+  //! (cell_coefficients), which moves with every such sigma_j and, through K_kj and
+  //! p_kj, every such u_j. Uses u_ of jacobian().
   void floor_jacobian(const CellCoefficients& c, std::span<const double> sigma,
                       std::span<const double> psi, std::span<double> jac) const {
     const int n = n_, nv = 2 * n;
