@@ -47,7 +47,8 @@
 //!   each part carries the specific volume of the product's own growth step extended to
 //!   that bin's mass: the part of mass fraction f in bin b gets f (m_b / m_p)^s m_p u_p,
 //!   s = d / ln(m_p / m_i) the step's slope d ln u / d ln m, |s| <= kMaxSplitSlope [C:
-//!   ours]. Like the mass split, which conserves mass and number but not the higher
+//!   ours, departing from spec §15.2, which asks the split to conserve the volume
+//!   measure]. Like the mass split, which conserves mass and number but not the higher
 //!   moments, this does not conserve the volume: it adds (f_lo (m_k/m_p)^s + f_hi
 //!   (m_{k+1}/m_p)^s - 1) m_p u_p, of first order in the bins' width. Splitting the
 //!   volume in proportion to mass instead (u_p in both bins, which conserves it) gives
