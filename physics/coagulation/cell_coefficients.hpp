@@ -372,11 +372,9 @@ inline CellCoefficients cell_coefficients(
     // unstable push).
     double growth = 0.0;
     for (int j = 0; j <= k; ++j)
-      if (sigma[j] > 0.0) {
-        const std::size_t kj = static_cast<std::size_t>(k) * n + j;
-        const double stick = losses ? c.kernel[kj] * (1.0 - c.p_frag[kj]) : c.kernel[kj];
-        growth += stick * sigma[j] / m[k];
-      }
+      if (sigma[j] > 0.0)
+        growth +=
+            c.sticking_kernel(static_cast<std::size_t>(k) * n + j) * sigma[j] / m[k];
     const double t_grow = 1.0 / (growth + 1e-30);
     const double t_soft = soft_min(t_grow, kRelaxCapOmega / gas.omega_k);
     c.relax_rate[k] = 1.0 / (kRelaxFraction * t_soft);

@@ -126,6 +126,13 @@ struct CellCoefficients {
   //! d relax_rate_k / d growth_k, growth_k = sum_{j <= k} K_kj (1 - p_kj) sigma_j / m_k
   //! [-] (spec §4.4)
   std::vector<double> dlnfloor_dlnu, drelax_dgrowth;
+
+  //! The kernel of the pair at ij that sticks, K_ij (1 - p_ij) (K_ij where nothing is
+  //! lost) [cm^2 s^-1]: the collisions that grow a bin, growth_k above, in the floors'
+  //! relaxation rate (cell_coefficients) and its Jacobian (floor_jacobian).
+  double sticking_kernel(std::size_t ij) const {
+    return p_frag.empty() ? kernel[ij] : kernel[ij] * (1.0 - p_frag[ij]);
+  }
 };
 
 //! Largest |slope| d ln u / d ln m of a sticking product's growth step along which its
@@ -560,6 +567,8 @@ class Smoluchowski {
     const auto& m = grid_.m;
     const bool d_floor = !c.dlnfloor_dlnu.empty();
     const bool d_rate = !c.drelax_dgrowth.empty() && !c.dlnk_dlnu.empty();
+    // with losses p_kj moves with u_k and u_j too
+    const bool d_loss = !c.p_frag.empty() && !c.dp_dlnu.empty();
     auto at = [&](int row, int col) -> double& {
       return jac[static_cast<std::size_t>(row) * nv + col];
     };
@@ -579,17 +588,14 @@ class Smoluchowski {
       // through r_k: dT/d growth_k, then growth_k by sigma_j and ln u_j
       const double t_g = -psi[k] * sp * c.drelax_dgrowth[k] / m[k];
       if (t_g == 0.0) continue;
-      // growth_k counts the sticking collisions, K_kj (1 - p_kj) (cell_coefficients):
-      // with losses, p_kj moves with u_k and u_j too
-      const bool losses = !c.p_frag.empty();
-      const bool d_loss = losses && !c.dp_dlnu.empty();
+      // growth_k counts the sticking collisions, K_kj (1 - p_kj) (sticking_kernel)
       double own = 0.0;  // d growth_k m_k / d ln u_k: every pair (k, j <= k) by u_k
       for (int j = 0; j <= k; ++j) {
         if (!(sigma[j] > 0.0)) continue;
         const std::size_t kj = static_cast<std::size_t>(k) * n + j;
         const std::size_t jk = static_cast<std::size_t>(j) * n + k;
         const double kk = c.kernel[kj];
-        const double stick = losses ? kk * (1.0 - c.p_frag[kj]) : kk;
+        const double stick = c.sticking_kernel(kj);
         at(n + k, j) += t_g * stick;
         own += stick * c.dlnk_dlnu[kj] * sigma[j];
         if (d_loss) own -= kk * c.dp_dlnu[kj] * sigma[j];
