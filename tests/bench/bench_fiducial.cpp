@@ -14,18 +14,7 @@
 //              state of the cell of the largest (after "||").
 //   --lts:     also estimate from the coupled run what a scheme that stepped blocks of
 //              B neighbouring cells each with its own step size (multirate, local time
-//              stepping) would need at best (issues 3, 7): after every step of size h and
-//              order q, block b's share of CVODE's local error estimate, its own weighted
-//              RMS norm e_b, says what step it could have taken alone,
-//              h_b = h (tol_b e / e_b)^(1/(q+1)) (e: the global norm of the step, so the
-//              block that limits the step gets h), capped at the snapshot interval; the
-//              block then needs h / h_b steps for this stretch. tol_b = sqrt(N / n_b)
-//              holds every block to the accuracy CVODE's global norm allowed the cell
-//              that limited the step (one block alone at tol_b gives e = 1); tol_b = 1
-//              holds every block to that of the whole disk (stricter). Transport is in
-//              the estimate (the coupled run's errors contain it); what is not: the cost
-//              of coupling the blocks and of restarting their integrators, and step-size
-//              selection better than this extrapolation. A bound, not a scheme.
+//              stepping) would need at best (issues 3, 7; tests/bench/lts_estimate.hpp).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -44,6 +33,7 @@
 #include "src/scene/config.hpp"
 #include "src/solver/cvode_integrator.hpp"
 #include "src/solver/state_layout.hpp"
+#include "tests/bench/lts_estimate.hpp"
 
 using namespace panoptic;
 
@@ -54,87 +44,6 @@ struct Result {
   double cpu = 0.0;  //!< the process's CPU time over the run (on a shared machine)
   SolverStats stats;
   CallbackTimes times;
-};
-
-//! The --lts estimate: cell-steps of blocks of B cells with their own step sizes.
-class LtsEstimate {
- public:
-  // the last: one block of every cell, the coupled run itself (a check of the estimate)
-  static constexpr int kBlockSizes[] = {1, 4, 16, 64, 1 << 30};
-  //! Cells with Sigma_d below these fractions of the largest count as nearly empty.
-  static constexpr double kEmptyBelow[] = {1e-6, 1e-3};
-  LtsEstimate(const StateLayout& layout) : layout_(layout) {}
-
-  //! One accepted step: weighted local errors |e_i w_i| of every component, the step's
-  //! size and order, the snapshot interval it lies in [s], and the state after it.
-  void add(const std::vector<double>& e, double h, int q, double interval,
-           std::span<const double> y, int sigma_slot) {
-    const long n_all = static_cast<long>(e.size());
-    double sum2 = 0.0;
-    for (double x : e) sum2 += x * x;
-    const double e_glob = std::sqrt(sum2 / double(n_all));
-    if (!(e_glob > 0.0) || !(h > 0.0)) return;
-    const int nc = layout_.n_cells(), nv = layout_.n_cell_vars();
-    // One step size still, but the cells with little dust left out of the error test.
-    double sigma_max = 0.0;
-    for (int c = 0; c < nc; ++c)
-      sigma_max = std::max(sigma_max, y[layout_.index(c, sigma_slot)]);
-    for (std::size_t k = 0; k < std::size(kEmptyBelow); ++k) {
-      double s2 = sum2;
-      for (int c = 0; c < nc; ++c)
-        if (y[layout_.index(c, sigma_slot)] < kEmptyBelow[k] * sigma_max)
-          for (long i = layout_.index(c, 0); i < layout_.index(c + 1, 0); ++i)
-            s2 -= e[i] * e[i];
-      const double e_rest = std::sqrt(std::max(s2, 0.0) / double(n_all));
-      const double ratio =
-          e_rest > 0.0 ? std::pow(e_glob / e_rest, 1.0 / (q + 1)) : 1e300;
-      steps_without_empty_[k] += h / std::min(h * ratio, interval);
-    }
-    for (std::size_t k = 0; k < std::size(kBlockSizes); ++k) {
-      const int bsize = kBlockSizes[k];
-      for (int c0 = 0; c0 < nc; c0 += bsize) {
-        const int c1 = std::min(nc, c0 + bsize);
-        double s2 = 0.0;
-        for (long i = layout_.index(c0, 0); i < layout_.index(c1, 0); ++i)
-          s2 += e[i] * e[i];
-        const double n_b = double(c1 - c0) * nv;
-        const double e_b = std::sqrt(s2 / n_b);
-        for (int strict = 0; strict < 2; ++strict) {
-          const double tol = strict ? 1.0 : std::sqrt(double(n_all) / n_b);
-          const double ratio =
-              e_b > 0.0 ? std::pow(tol * e_glob / e_b, 1.0 / (q + 1)) : 1e300;
-          const double h_b = std::min(h * ratio, interval);
-          cell_steps_[k][strict] += (c1 - c0) * h / h_b;
-        }
-      }
-    }
-    coupled_ += nc;
-  }
-  void print(long steps) const {
-    std::printf(
-        "\nlocal time stepping, best case (--lts): cell-steps of blocks of B cells each "
-        "on its own step size\n| B | cell-steps, tol_b = sqrt(N/n_b) | vs coupled | "
-        "cell-steps, tol_b = 1 | vs coupled |\n|---|---|---|---|---|\n");
-    std::printf("| coupled (%ld steps) | %.3g | 1 | | |\n", steps, coupled_);
-    for (std::size_t k = 0; k < std::size(kBlockSizes); ++k)
-      std::printf("| %s | %.3g | %.3f | %.3g | %.3f |\n",
-                  kBlockSizes[k] >= layout_.n_cells()
-                      ? "all"
-                      : std::to_string(kBlockSizes[k]).c_str(),
-                  cell_steps_[k][0], cell_steps_[k][0] / coupled_, cell_steps_[k][1],
-                  cell_steps_[k][1] / coupled_);
-    for (std::size_t k = 0; k < std::size(kEmptyBelow); ++k)
-      std::printf(
-          "one step size, cells with Sigma_d below %g of the largest left out of "
-          "the error test: %.0f steps (%.3f of the run's)\n",
-          kEmptyBelow[k], steps_without_empty_[k], steps_without_empty_[k] / steps);
-  }
-
- private:
-  const StateLayout& layout_;
-  double cell_steps_[std::size(kBlockSizes)][2] = {};
-  double coupled_ = 0.0;
-  double steps_without_empty_[std::size(kEmptyBelow)] = {};
 };
 
 Result run_once(const Config& cfg, long trace_every, bool lts) {
@@ -148,14 +57,13 @@ Result run_once(const Config& cfg, long trace_every, bool lts) {
   CvodeIntegrator cvode(sim.model(), times.front(), y0, sim.integrator_options());
   cvode.set_profile(&res.times);
   const bool reinit = cfg.flag("solver.reinit_at_snapshots");
-  LtsEstimate estimate(sim.model().layout());
+  bench::LtsEstimate estimate(sim.model().layout(), {sim.transport().sigma_slot()});
   for (std::size_t k = 1; k < times.size(); ++k) {
     cvode.advance_to(times[k], [&](double t, long nst) {
       if (lts) {
         const auto info = cvode.step_info(0, true);
         estimate.add(info.weighted_errors, info.h_last, info.order_last,
-                     times[k] - times[k - 1], cvode.state(),
-                     sim.transport().sigma_slot());
+                     times[k] - times[k - 1], cvode.state());
       }
       if (trace_every <= 0 || nst % trace_every != 0) return;
       const auto info = cvode.step_info(3);

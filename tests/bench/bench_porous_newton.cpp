@@ -19,9 +19,11 @@
 // Usage: build/tests/bench_porous_newton SCENE [--set key=value ...] [--probe N]
 //        [--every K] (probe every K-th failure) [--threads T] (worker threads,
 //        src/core/worker_threads.hpp: the CPU time is then that of all threads)
-//        [--limiting 1]; or --restart CHK.h5 instead of SCENE: from a checkpoint's state
-//        and time on, with its stored scene (--set may change the output times and the
-//        solver, as `panoptic run --restart`), to the scene's snapshot times after it
+//        [--limiting 1] [--lts 1] (what local time stepping could save at best:
+//        tests/bench/lts_estimate.hpp); or --restart CHK.h5 instead of SCENE: from a
+//        checkpoint's state and time on, with its stored scene (--set may change the
+//        output times and the solver, as `panoptic run --restart`), to the scene's
+//        snapshot times after it
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -40,6 +42,7 @@
 #include "src/scene/config.hpp"
 #include "src/solver/block_banded_lu.hpp"
 #include "src/solver/cvode_integrator.hpp"
+#include "tests/bench/lts_estimate.hpp"
 
 using namespace panoptic;
 
@@ -304,13 +307,13 @@ int main(int argc, char** argv) {
     std::fprintf(
         stderr,
         "usage: %s SCENE|--restart CHK.h5 [--set k=v ...] [--probe N] [--every K] "
-        "[--threads T] [--limiting 1]\n",
+        "[--threads T] [--limiting 1] [--lts 1]\n",
         argv[0]);
     return 2;
   }
   std::vector<std::string> sets;
   int n_probe = 0, every = 1;
-  bool count_limiting = false;
+  bool count_limiting = false, lts = false;
   for (int i = from_checkpoint ? 3 : 2; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--set")
@@ -321,6 +324,8 @@ int main(int argc, char** argv) {
       every = std::stoi(argv[i + 1]);
     else if (a == "--limiting")
       count_limiting = std::stoi(argv[i + 1]) != 0;
+    else if (a == "--lts")
+      lts = std::stoi(argv[i + 1]) != 0;
     else if (a == "--threads")
       set_worker_threads(std::stoi(argv[i + 1]));
   }
@@ -342,6 +347,16 @@ int main(int argc, char** argv) {
   cvode.set_profile(&cb);
   std::vector<Probe> probes;
   std::map<std::string, long> limiting_kind;  // steps by variable kind ("psi", "sigma_g")
+  std::vector<int> dust_slots;  // a cell's Sigma_d: its bins' sigma_k, or sigma_d
+  const StateLayout& layout = sim.model().layout();
+  for (int v = 0; v < layout.n_cell_vars(); ++v) {
+    const std::string& name = layout.cell_var(v).name;
+    if (name == "sigma_d" ||
+        (name.rfind("sigma_", 0) == 0 && name.size() > 6 &&
+         name.find_first_not_of("0123456789", 6) == std::string::npos))
+      dust_slots.push_back(v);
+  }
+  bench::LtsEstimate estimate(layout, dust_slots);
   long last_nncf = 0, failures_seen = 0;
   SolverStats prev;
   double cpu0 = cpu_seconds(), cpu_prev = cpu0;
@@ -351,6 +366,11 @@ int main(int argc, char** argv) {
   for (std::size_t k = 1; k < times.size(); ++k) {
     std::map<long, int> limiting;  // steps each component limited (largest error)
     cvode.advance_to(times[k], [&](double t, long) {
+      if (lts) {
+        const auto info = cvode.step_info(0, true);
+        estimate.add(info.weighted_errors, info.h_last, info.order_last,
+                     times[k] - times[k - 1], cvode.state());
+      }
       if (count_limiting) {
         const auto info = cvode.step_info(1);
         if (!info.largest_errors.empty()) {
@@ -432,6 +452,7 @@ int main(int argc, char** argv) {
       "linear set-up %.2f (%ld), linear solve %.2f (%ld)\n",
       cb.rhs_s, cb.n_rhs, cb.jac_s, cb.n_jac, cb.lsetup_s, cb.n_lsetup, cb.lsolve_s,
       cb.n_lsolve);
+  if (lts) estimate.print(s.nst);
   for (const Probe& pr : probes) analyse(sim, pr, opt);
   return 0;
 }
