@@ -15,7 +15,8 @@ namespace {
 constexpr long kSparseShareInverse = 16;
 
 // Whether the pivots of a factorised block are all non-zero and finite.
-bool usable(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
+template <class Lu>
+bool usable(const Lu& lu) {
   const auto d = lu.matrixLU().diagonal().cwiseAbs();
   return d.allFinite() && (d.size() == 0 || d.minCoeff() > 0.0);
 }
@@ -77,12 +78,11 @@ BlockBandedLU::BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int b
   c_value_.assign(static_cast<std::size_t>(n_coupling), 0.0);
 
   // c_value_ is sized before the pointers into it are taken: they stay valid.
-  destination_.resize(static_cast<std::size_t>(pattern.nnz()));
   std::size_t t = 0;
   for (long c = 0; c < pattern.size(); ++c)
     for (auto p = col_ptr[c]; p < col_ptr[c + 1]; ++p) {
       const long r = rows[p];
-      double*& to = destination_[static_cast<std::size_t>(p)];
+      double* to = nullptr;
       if (r < n_cell_part_) {
         Matrix& m = block(static_cast<int>(r / b_), static_cast<int>(c / b_));
         to = &m(r % b_, c % b_);
@@ -93,7 +93,17 @@ BlockBandedLU::BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int b
       } else {
         to = &g_(r - n_cell_part_, c - n_cell_part_);
       }
+      const auto from = static_cast<std::size_t>(p);
+      if (!destination_.empty()) {
+        CopyRun& last = destination_.back();
+        if (last.from + last.length == from && last.to + last.length == to) {
+          ++last.length;
+          continue;
+        }
+      }
+      destination_.push_back({to, from, 1});
     }
+  destination_.shrink_to_fit();
 }
 
 bool BlockBandedLU::factorize(std::span<const double> values) {
@@ -104,15 +114,17 @@ bool BlockBandedLU::factorize(std::span<const double> values) {
   });
   g_.setZero();
   parallel_bands(destination_.size(), [&](std::size_t lo, std::size_t hi) {
-    for (std::size_t p = lo; p < hi; ++p) *destination_[p] = values[p];
+    for (std::size_t q = lo; q < hi; ++q)
+      std::copy_n(values.data() + destination_[q].from, destination_[q].length,
+                  destination_[q].to);
   });
 
   if (w_ == 0) {
     // independent blocks (the GMRES preconditioner's): factorised by the worker threads
     std::vector<char> ok(static_cast<std::size_t>(n_), 0);
     parallel_for(n_, [&](int k, int) {
-      pivots_[k].compute(block(k, k));
-      ok[static_cast<std::size_t>(k)] = usable(pivots_[k]);
+      factorize_pivot(k);
+      ok[static_cast<std::size_t>(k)] = usable(*pivots_[k]);
     });
     if (std::ranges::find(ok, 0) != ok.end()) return false;
   }
@@ -120,12 +132,12 @@ bool BlockBandedLU::factorize(std::span<const double> values) {
   // column k are final; U_kj <- D_k^-1 U_kj, then A_ij -= A_ik (D_k^-1 U_kj) for the
   // rows i and columns j within the band below and right of k.
   for (int k = 0; w_ > 0 && k < n_; ++k) {
-    pivots_[k].compute(block(k, k));
-    if (!usable(pivots_[k])) return false;
+    factorize_pivot(k);
+    if (!usable(*pivots_[k])) return false;
     const int last = std::min(n_ - 1, k + w_);
     for (int j = k + 1; j <= last; ++j) {
       scratch_block_ = block(k, j);
-      block(k, j) = pivots_[k].solve(scratch_block_);
+      block(k, j) = pivots_[k]->solve(scratch_block_);
     }
     for (int i = k + 1; i <= last; ++i) {
       const std::size_t s = slot(i, k);
@@ -148,6 +160,15 @@ bool BlockBandedLU::factorize(std::span<const double> values) {
   return true;
 }
 
+void BlockBandedLU::factorize_pivot(int k) {
+  // in place: the LU overwrites the pivot block, which the elimination does not read
+  // again (Eigen's in-place decomposition, the same kernel as on a copy)
+  if (pivots_[k])
+    pivots_[k]->compute(block(k, k));
+  else
+    pivots_[k].emplace(block(k, k));
+}
+
 void BlockBandedLU::subtract_lower_product(int i, int j,
                                            const Eigen::Ref<const Eigen::VectorXd>& x,
                                            Eigen::Ref<Eigen::VectorXd> y) const {
@@ -167,7 +188,7 @@ bool BlockBandedLU::solve(std::span<double> x) const {
     parallel_for(n_, [&](int k, int worker) {
       Eigen::VectorXd& s = worker_scratch_[static_cast<std::size_t>(worker)];
       auto xk = v.segment(static_cast<Eigen::Index>(k) * b_, b_);
-      s = pivots_[k].solve(xk);
+      s = pivots_[k]->solve(xk);
       xk = s;
     });
   }
@@ -175,7 +196,7 @@ bool BlockBandedLU::solve(std::span<double> x) const {
   // known; backward: x_k = y_k - sum_j (D_k^-1 U_kj) x_j.
   for (int k = 0; w_ > 0 && k < n_; ++k) {
     auto xk = v.segment(static_cast<Eigen::Index>(k) * b_, b_);
-    scratch_.head(b_) = pivots_[k].solve(xk);
+    scratch_.head(b_) = pivots_[k]->solve(xk);
     xk = scratch_.head(b_);
     for (int i = k + 1; i <= std::min(n_ - 1, k + w_); ++i)
       subtract_lower_product(i, k, xk, v.segment(static_cast<Eigen::Index>(i) * b_, b_));

@@ -21,6 +21,7 @@
 //! dense product (fill, bandwidth > 1).
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -48,6 +49,12 @@ class BlockBandedLU {
 
   //! Throws BlockStructureRefused with refusal() when the pattern lacks the structure.
   BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int block_size);
+  // The pivot blocks' LUs refer to the blocks' storage (in place): a copy would refer
+  // to the original's; a move keeps the storage.
+  BlockBandedLU(const BlockBandedLU&) = delete;
+  BlockBandedLU& operator=(const BlockBandedLU&) = delete;
+  BlockBandedLU(BlockBandedLU&&) = default;
+  BlockBandedLU& operator=(BlockBandedLU&&) = default;
 
   int n_blocks() const { return n_; }
   int block_size() const { return b_; }
@@ -72,6 +79,8 @@ class BlockBandedLU {
   std::size_t slot(int i, int j) const {
     return static_cast<std::size_t>(i) * (2 * w_ + 1) + (j - i + w_);
   }
+  //! LU of the pivot block k, in place.
+  void factorize_pivot(int k);
   //! y -= block (i, j) x, the block's sparse copy when it has one (lower blocks).
   void subtract_lower_product(int i, int j, const Eigen::Ref<const Eigen::VectorXd>& x,
                               Eigen::Ref<Eigen::VectorXd> y) const;
@@ -84,9 +93,16 @@ class BlockBandedLU {
   //! non-zero (used in the elimination and the forward solve), indexed by slot().
   std::vector<Sparse> lower_sparse_;
   std::vector<char> lower_is_sparse_;
-  std::vector<Eigen::PartialPivLU<Matrix>> pivots_;  //!< LU of each pivot block
-  //! Where each pattern entry goes: a pointer into a band block, into G, or into C.
-  std::vector<double*> destination_;
+  //! LU of each pivot block, in place in the block (none before the first factorize)
+  std::vector<std::optional<Eigen::PartialPivLU<Eigen::Ref<Matrix>>>> pivots_;
+  //! Where the pattern's entries go: each run of consecutive entries [from, from +
+  //! length) to consecutive storage at `to`, in a band block (column-major), in G, or
+  //! in C; one run per column of a dense block instead of a pointer per entry.
+  struct CopyRun {
+    double* to = nullptr;
+    std::size_t from = 0, length = 0;
+  };
+  std::vector<CopyRun> destination_;
   //! C as triplets: the global row (0-based among the globals), the cell column, value.
   std::vector<int> c_row_;
   std::vector<long> c_col_;

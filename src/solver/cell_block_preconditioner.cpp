@@ -1,5 +1,6 @@
 #include "src/solver/cell_block_preconditioner.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -35,17 +36,33 @@ SparsityPattern cell_block_pattern(const SparsityPattern& pattern, int n_cells, 
 
 CellBlockPreconditioner::CellBlockPreconditioner(const SparsityPattern& pattern,
                                                  int n_cells, int n_cell_vars)
+    : CellBlockPreconditioner(pattern, cell_block_pattern(pattern, n_cells, n_cell_vars),
+                              n_cells, n_cell_vars) {}
+
+CellBlockPreconditioner::CellBlockPreconditioner(const SparsityPattern& pattern,
+                                                 const SparsityPattern& block_pattern,
+                                                 int n_cells, int n_cell_vars)
     : n_cell_part_(static_cast<long>(n_cells) * n_cell_vars),
-      block_pattern_(cell_block_pattern(pattern, n_cells, n_cell_vars)),
-      cells_(block_pattern_, n_cells, n_cell_vars) {
-  const auto col_ptr = block_pattern_.col_ptr();
-  const auto rows = block_pattern_.row_index();
+      cells_(block_pattern, n_cells, n_cell_vars) {
+  const auto col_ptr = block_pattern.col_ptr();
+  const auto rows = block_pattern.row_index();
   // every entry is one of pattern's: its cells' blocks and the diagonal it holds whole
   for (long col = 0; col < n_cell_part_; ++col)
-    for (auto p = col_ptr[col]; p < col_ptr[col + 1]; ++p)
-      source_.push_back(static_cast<std::size_t>(pattern.position(rows[p], col)));
-  block_diagonal_ = block_pattern_.diagonal_positions();
-  block_values_.assign(source_.size(), 0.0);
+    for (auto p = col_ptr[col]; p < col_ptr[col + 1]; ++p) {
+      const auto from = static_cast<std::size_t>(pattern.position(rows[p], col));
+      const auto to = static_cast<std::size_t>(p);
+      if (!source_.empty()) {
+        CopyRun& last = source_.back();
+        if (last.from + last.length == from && last.to + last.length == to) {
+          ++last.length;
+          continue;
+        }
+      }
+      source_.push_back({from, to, 1});
+    }
+  source_.shrink_to_fit();
+  block_diagonal_ = block_pattern.diagonal_positions();
+  block_values_.assign(static_cast<std::size_t>(block_pattern.nnz()), 0.0);
   for (long g = n_cell_part_; g < pattern.size(); ++g)
     global_diagonal_.push_back(pattern.position(g, g));  // the pattern holds it
   global_pivot_.assign(global_diagonal_.size(), 1.0);
@@ -53,7 +70,9 @@ CellBlockPreconditioner::CellBlockPreconditioner(const SparsityPattern& pattern,
 
 bool CellBlockPreconditioner::setup(std::span<const double> jacobian, double gamma) {
   parallel_bands(source_.size(), [&](std::size_t lo, std::size_t hi) {
-    for (std::size_t q = lo; q < hi; ++q) block_values_[q] = jacobian[source_[q]];
+    for (std::size_t q = lo; q < hi; ++q)
+      std::copy_n(jacobian.data() + source_[q].from, source_[q].length,
+                  block_values_.data() + source_[q].to);
   });
   newton_matrix(block_values_, block_diagonal_, gamma, block_values_);
   if (!cells_.factorize(block_values_)) return false;

@@ -34,15 +34,24 @@ class CellBlockPreconditioner {
   long stored_doubles() const;
 
  private:
+  //! Delegated to with the pattern of the cells' diagonal blocks (each block's
+  //! diagonal included), over the cells' variables only: kept by none of the members
+  //! once built.
+  CellBlockPreconditioner(const SparsityPattern& pattern,
+                          const SparsityPattern& block_pattern, int n_cells,
+                          int n_cell_vars);
+
   long n_cell_part_ = 0;
-  //! The pattern of the cells' diagonal blocks (each block's diagonal included), over
-  //! the cells' variables only.
-  SparsityPattern block_pattern_;
-  //! Per entry of block_pattern_: its position in the Jacobian's pattern.
-  std::vector<std::size_t> source_;
-  std::vector<std::size_t> block_diagonal_;  //!< block_pattern_'s diagonal positions
+  //! J_cc's entries from the Jacobian: each run of consecutive entries of the block
+  //! pattern [to, to + length) from consecutive positions [from, from + length) of the
+  //! Jacobian's pattern (one run per column of a dense cell block).
+  struct CopyRun {
+    std::size_t from = 0, to = 0, length = 0;
+  };
+  std::vector<CopyRun> source_;
+  std::vector<std::size_t> block_diagonal_;  //!< the block pattern's diagonal positions
   std::vector<double>
-      block_values_;     //!< J_cc, then I - gamma J_cc (block_pattern_'s order)
+      block_values_;     //!< J_cc, then I - gamma J_cc (the block pattern's order)
   BlockBandedLU cells_;  //!< its factors (bandwidth 0)
   std::vector<long> global_diagonal_;  //!< pattern position of each global's diagonal
   std::vector<double> global_pivot_;   //!< 1 - gamma J_gg of each global

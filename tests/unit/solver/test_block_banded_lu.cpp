@@ -119,6 +119,26 @@ TEST(BlockBandedLU, BandwidthTwoWithGlobalsMatchesDenseSolve) {
   expect_solves_like_dense(2, false, 1);
 }
 
+// Bandwidth 0 (the GMRES preconditioner's cells): each pivot block is factorised in
+// place, in the block's own storage, and gives the bits of Eigen's LU of a copy; a
+// moved solver keeps its factors (they refer to the blocks' storage, which moves along).
+TEST(BlockBandedLU, IndependentBlocksInPlaceGiveTheBitsOfEigensLuAndSurviveAMove) {
+  const int n_blocks = 5, b = 9;
+  const RandomSystem s = random_system(n_blocks, b, 0, 0, false, 5);
+  BlockBandedLU lu(s.pattern, n_blocks, b);
+  ASSERT_EQ(lu.bandwidth(), 0);
+  ASSERT_TRUE(lu.factorize(s.values));
+  BlockBandedLU moved(std::move(lu));
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n_blocks * b, -1.0, 2.0);
+  std::vector<double> x(rhs.begin(), rhs.end());
+  ASSERT_TRUE(moved.solve(x));
+  for (int k = 0; k < n_blocks; ++k) {
+    const Eigen::MatrixXd block = s.dense.block(k * b, k * b, b, b);
+    const Eigen::VectorXd ref = block.partialPivLu().solve(rhs.segment(k * b, b));
+    for (int r = 0; r < b; ++r) EXPECT_EQ(x[k * b + r], ref(r)) << "cell " << k;
+  }
+}
+
 // A second factorisation of other values in the same pattern starts from zero blocks:
 // the fill of the first leaves nothing behind.
 TEST(BlockBandedLU, RefactorisationOfNewValues) {
