@@ -8,6 +8,7 @@
 //! tests/bench/bench_coagulation.cpp.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -120,21 +121,30 @@ struct CoefficientWorkspace {
   //! and perturbed
   PerturbedBins perturbed;
   std::vector<double> dv_step, s_c, s_c_step;
-  std::vector<PairMasses> masses;  //!< at (i, j), j <= i: pair_masses(m_i, m_j)
-  std::vector<double> masses_of;   //!< the grid `masses` was built for [g]
+  //! The mass terms of every pair of a grid: at (i, j), j <= i, pair_masses(m_i, m_j).
+  //! They depend on the grid alone, so the cells of a disk share one table.
+  struct PairMassTable {
+    std::vector<double> of;  //!< the grid's masses [g]
+    std::vector<PairMasses> pairs;
+  };
+  std::shared_ptr<const PairMassTable> masses;
   //! per bin: fragment_u_ceiling(m_k, m0) of the grid `cap_of` and monomer mass `cap_m0`
   std::vector<double> fragment_u_cap, cap_of;
   double cap_m0 = -1.0;  //!< [g]
 
   //! The mass terms of every pair of `m` (kept while the grid stays the same).
   void set_grid(std::span<const double> m) {
-    if (std::ranges::equal(m, masses_of)) return;
+    if (masses != nullptr && std::ranges::equal(m, masses->of)) return;
     const std::size_t n = m.size();
-    masses_of.assign(m.begin(), m.end());
-    masses.assign(n * n, PairMasses{});
+    auto t = std::make_shared<PairMassTable>();
+    t->of.assign(m.begin(), m.end());
+    t->pairs.assign(n * n, PairMasses{});
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j <= i; ++j) masses[i * n + j] = pair_masses(m[i], m[j]);
+      for (std::size_t j = 0; j <= i; ++j) t->pairs[i * n + j] = pair_masses(m[i], m[j]);
+    masses = std::move(t);
   }
+  //! Takes the pair mass terms of `other` (a cell of the same grid), without a copy.
+  void share_grid(const CoefficientWorkspace& other) { masses = other.masses; }
 
   //! The fragments' ceiling of every bin of `m` for monomers of mass m0 [g] (kept while
   //! the grid and m0 stay the same): it depends on neither the gas nor the state.
@@ -215,7 +225,7 @@ inline CellCoefficients cell_coefficients(
   const CompactPairTable* table = nullptr;
   if (porous && n_compact * n_compact >= n) {
     ws.compact_pairs.set(
-        grid, ws.masses, ws.speeds,
+        grid, ws.masses->pairs, ws.speeds,
         {gas, sp.rho0, e_threshold, o.drag, o.turbulence, s, engine.crater_bins()});
     table = &ws.compact_pairs;
   }
@@ -310,7 +320,7 @@ inline CellCoefficients cell_coefficients(
     const double s_c = ws.s_c[i];
     for (int j = 0; j <= i; ++j) {
       const std::size_t ij = static_cast<std::size_t>(i) * n + j;
-      const PairMasses& pm = ws.masses[ij];
+      const PairMasses& pm = ws.masses->pairs[ij];
       if (!from_table(i, j)) {
         const double e_imp = impact_energy(pm, dv[ij]);  // spec §15.3
         c.ln_u_ratio[ij] = product_ln_u_ratio(pm, u[i], u[j], e_imp, e_threshold, s_c);

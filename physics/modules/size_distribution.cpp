@@ -159,6 +159,12 @@ void SizeDistribution::update_porous(std::span<const double> y, bool coefficient
                                      bool derivatives) const {
   const int nb = n_bins_;
   workspace_.resize(grid_.n_cells());
+  if (coefficients && opt_.coagulation) {
+    // one table of the pairs' mass terms for every cell (the same grid)
+    workspace_[0].set_grid(engine_.grid().m);
+    for (auto& w : workspace_)
+      if (w.masses != workspace_[0].masses) w.share_grid(workspace_[0]);
+  }
   std::vector<WorkerScratch>& ws = workers();
   // the St of this state may have been computed already (bin_stokes_numbers); the
   // Jacobian's d St / d ln u are computed with them
