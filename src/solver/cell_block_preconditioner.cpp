@@ -20,16 +20,27 @@ SparsityPattern cell_block_pattern(const SparsityPattern& pattern, int n_cells, 
                                 " cells of " + std::to_string(b) +
                                 " variables do not fit a matrix of size " +
                                 std::to_string(pattern.size()));
-  PatternBuilder builder(n_cell_part);
+  // a filter of pattern's columns, which hold their diagonal (SparsityPattern's
+  // constructor): no builder's list of entries
   const auto col_ptr = pattern.col_ptr();
   const auto rows = pattern.row_index();
+  std::vector<sunindextype> block_col_ptr(static_cast<std::size_t>(n_cell_part) + 1, 0);
   for (long col = 0; col < n_cell_part; ++col) {
-    builder.add(col, col);
+    const long first = col / b * b;
+    sunindextype count = 0;
+    for (auto p = col_ptr[col]; p < col_ptr[col + 1]; ++p)
+      count += rows[p] >= first && rows[p] < first + b;
+    block_col_ptr[static_cast<std::size_t>(col) + 1] =
+        block_col_ptr[static_cast<std::size_t>(col)] + count;
+  }
+  std::vector<sunindextype> block_rows;
+  block_rows.reserve(static_cast<std::size_t>(block_col_ptr.back()));
+  for (long col = 0; col < n_cell_part; ++col) {
     const long first = col / b * b;
     for (auto p = col_ptr[col]; p < col_ptr[col + 1]; ++p)
-      if (rows[p] >= first && rows[p] < first + b) builder.add(rows[p], col);
+      if (rows[p] >= first && rows[p] < first + b) block_rows.push_back(rows[p]);
   }
-  return SparsityPattern(std::move(builder));
+  return SparsityPattern(n_cell_part, std::move(block_col_ptr), std::move(block_rows));
 }
 
 }  // namespace
