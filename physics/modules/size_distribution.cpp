@@ -130,7 +130,7 @@ coag::BinPorosity SizeDistribution::porosity(int cell, int k,
 
 std::vector<SizeDistribution::WorkerScratch>& SizeDistribution::workers() const {
   const auto n = static_cast<std::size_t>(worker_threads());
-  while (workers_.size() < n) workers_.push_back({engine_, {}, {}, {}, {}});
+  while (workers_.size() < n) workers_.push_back({engine_, {}, {}, {}, {}, {}});
   return workers_;
 }
 
@@ -177,8 +177,7 @@ void SizeDistribution::update_porous(std::span<const double> y, bool coefficient
     const long base = layout_.index(i, slot0_);
     coef_[i] = coag::cell_coefficients(
         engine_, y.subspan(base, nb), y.subspan(base + nb, nb), gas_now_[i],
-        cell_model(i), derivatives, &workspace_[i], std::move(coef_[i]),
-        derivatives ? &w.perturbed : nullptr);
+        cell_model(i), false, &workspace_[i], std::move(coef_[i]));
   });
   if (stokes) st_state_.assign(y.begin(), y.end());
 }
@@ -412,7 +411,9 @@ void SizeDistribution::add_rhs(double, std::span<const double> y,
 
 void SizeDistribution::add_jacobian(double, std::span<const double> y,
                                     JacobianValues& jac) const {
-  if (porous_) update_porous(y, opt_.coagulation, true);
+  // porous: every cell's St and d St / d ln u for the transport's terms; the cells'
+  // coefficients with their derivatives come cell by cell below
+  if (porous_) update_porous(y, false, true);
   const int n = grid_.n_cells(), nb = n_bins_;
   std::vector<FlowTarget> targets;
   for (int f = 0; f < n; ++f) {
@@ -485,7 +486,17 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
     WorkerScratch& w = ws[static_cast<std::size_t>(worker)];
     w.out.resize(static_cast<std::size_t>(nv) * nv);
     const long base = layout_.index(i, slot0_);
-    w.engine.jacobian(coef_[i], y.subspan(base, nb),
+    const coag::CellCoefficients* c = &coef_[i];
+    if (porous_) {
+      // the cell's coefficients with their derivatives by ln u into the worker's
+      // storage, on the cell's perturbed bins (update_stokes again: the same values)
+      update_stokes(i, y, true, w);
+      w.coef = coag::cell_coefficients(
+          engine_, y.subspan(base, nb), y.subspan(base + nb, nb), gas_now_[i],
+          cell_model(i), true, &workspace_[i], std::move(w.coef), &w.perturbed);
+      c = &w.coef;
+    }
+    w.engine.jacobian(*c, y.subspan(base, nb),
                       porous_ ? y.subspan(base + nb, nb) : std::span<const double>{},
                       w.out);
     jac.add_dense_block(base, nv, w.out);

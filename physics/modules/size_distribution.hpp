@@ -220,6 +220,9 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
     std::vector<double> phi;                        //!< porous, per bin
     physics::coagulation::BinProperties bins;       //!< porous, per bin
     physics::coagulation::PerturbedBins perturbed;  //!< porous Jacobian
+    //! porous Jacobian: the coefficients of the cell at hand with their derivatives by
+    //! ln u (N x N matrices that only the Jacobian reads, so that no cell keeps them)
+    physics::coagulation::CellCoefficients coef;
   };
 
   //! The coefficients and St of every bin of `cell` from its gas (compact; with
@@ -228,10 +231,11 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! The outcome model of `cell`'s species (DustPy's, with erosion Krijt et al.'s on the
   //! unequal pairs: spec §15.2).
   physics::coagulation::CellModel cell_model(int cell) const;
-  //! Porous: the coefficients (with their derivatives by ln u for the Jacobian), St and
-  //! d St/d ln u of every bin of every cell from state y.
-  //! Without `coefficients` only St (and with `derivatives` d St/d ln u). St are not
-  //! computed again for the state of st_state_ (without `derivatives`).
+  //! Porous: the coefficients, St and (with `derivatives`) d St/d ln u of every bin of
+  //! every cell from state y; without `coefficients` only St and their derivatives. St
+  //! are not computed again for the state of st_state_ (without `derivatives`). The
+  //! coefficients' derivatives by ln u are built cell by cell where the Jacobian reads
+  //! them (add_jacobian), and kept by no cell.
   void update_porous(std::span<const double> y, bool coefficients,
                      bool derivatives) const;
   //! Porous: St (and with `derivatives` d St/d ln u, and the perturbed bins in
