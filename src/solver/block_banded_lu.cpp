@@ -63,20 +63,7 @@ BlockBandedLU::BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int b
       w_ = std::max<int>(w_, static_cast<int>(std::abs(rows[p] / b_ - c / b_)));
     }
 
-  blocks_.resize(static_cast<std::size_t>(n_) * (2 * w_ + 1));
-  for (int i = 0; i < n_; ++i)
-    for (int j = std::max(0, i - w_); j <= std::min(n_ - 1, i + w_); ++j)
-      block(i, j).setZero(b_, b_);
-  lower_sparse_.resize(blocks_.size());
-  lower_is_sparse_.assign(blocks_.size(), 0);
-  pivots_.resize(static_cast<std::size_t>(n_));
-  g_.setZero(n_g_, n_g_);
-  scratch_.resize(std::max(b_, n_g_));
-  scratch_block_.resize(b_, b_);
-  c_row_.reserve(static_cast<std::size_t>(n_coupling));
-  c_col_.reserve(static_cast<std::size_t>(n_coupling));
-  c_value_.assign(static_cast<std::size_t>(n_coupling), 0.0);
-
+  allocate(n_coupling);
   // c_value_ is sized before the pointers into it are taken: they stay valid.
   std::size_t t = 0;
   for (long c = 0; c < pattern.size(); ++c)
@@ -93,31 +80,92 @@ BlockBandedLU::BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int b
       } else {
         to = &g_(r - n_cell_part_, c - n_cell_part_);
       }
-      const auto from = static_cast<std::size_t>(p);
-      if (!destination_.empty()) {
-        CopyRun& last = destination_.back();
-        if (last.from + last.length == from && last.to + last.length == to) {
-          ++last.length;
-          continue;
-        }
-      }
-      destination_.push_back({to, from, 1});
+      add_destination(static_cast<std::size_t>(p), to);
     }
   destination_.shrink_to_fit();
 }
 
+BlockBandedLU::BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int block_size,
+                             CellBlocksOnly)
+    : n_(n_blocks), b_(block_size) {
+  n_cell_part_ = static_cast<long>(n_) * b_;
+  if (n_blocks < 1 || block_size < 1 || n_cell_part_ > pattern.size())
+    throw std::invalid_argument(
+        std::to_string(n_blocks) + " cells of " + std::to_string(block_size) +
+        " variables do not fit a matrix of size " + std::to_string(pattern.size()));
+  allocate(0);
+  const auto col_ptr = pattern.col_ptr();
+  const auto rows = pattern.row_index();
+  for (long c = 0; c < n_cell_part_; ++c) {
+    const long first = c / b_ * b_;
+    for (auto p = col_ptr[c]; p < col_ptr[c + 1]; ++p)
+      if (rows[p] >= first && rows[p] < first + b_)
+        add_destination(static_cast<std::size_t>(p),
+                        &block(static_cast<int>(c / b_), static_cast<int>(c / b_))(
+                            rows[p] % b_, c % b_));
+  }
+  destination_.shrink_to_fit();
+}
+
+void BlockBandedLU::allocate(long n_coupling) {
+  blocks_.resize(static_cast<std::size_t>(n_) * (2 * w_ + 1));
+  for (int i = 0; i < n_; ++i)
+    for (int j = std::max(0, i - w_); j <= std::min(n_ - 1, i + w_); ++j)
+      block(i, j).setZero(b_, b_);
+  lower_sparse_.resize(blocks_.size());
+  lower_is_sparse_.assign(blocks_.size(), 0);
+  pivots_.resize(static_cast<std::size_t>(n_));
+  g_.setZero(n_g_, n_g_);
+  scratch_.resize(std::max(b_, n_g_));
+  scratch_block_.resize(b_, b_);
+  c_row_.reserve(static_cast<std::size_t>(n_coupling));
+  c_col_.reserve(static_cast<std::size_t>(n_coupling));
+  c_value_.assign(static_cast<std::size_t>(n_coupling), 0.0);
+}
+
+void BlockBandedLU::add_destination(std::size_t p, double* to) {
+  if (!destination_.empty()) {
+    CopyRun& last = destination_.back();
+    if (last.from + last.length == p && last.to + last.length == to) {
+      ++last.length;
+      return;
+    }
+  }
+  destination_.push_back({to, p, 1});
+}
+
 bool BlockBandedLU::factorize(std::span<const double> values) {
+  return fill_and_factorize(values, nullptr);
+}
+
+bool BlockBandedLU::factorize_newton(std::span<const double> jacobian, double c) {
+  return fill_and_factorize(jacobian, &c);
+}
+
+bool BlockBandedLU::fill_and_factorize(std::span<const double> values, const double* c) {
   // zeroed and filled in bands by the worker threads: every entry has a destination of
   // its own
   parallel_bands(blocks_.size(), [&](std::size_t lo, std::size_t hi) {
     for (std::size_t b = lo; b < hi; ++b) blocks_[b].setZero();
   });
   g_.setZero();
+  const double minus_c = c != nullptr ? -*c : 0.0;
   parallel_bands(destination_.size(), [&](std::size_t lo, std::size_t hi) {
-    for (std::size_t q = lo; q < hi; ++q)
-      std::copy_n(values.data() + destination_[q].from, destination_[q].length,
-                  destination_[q].to);
+    for (std::size_t q = lo; q < hi; ++q) {
+      const double* from = values.data() + destination_[q].from;
+      double* to = destination_[q].to;
+      if (c == nullptr)
+        std::copy_n(from, destination_[q].length, to);
+      else  // newton_matrix's (-c) J, then 1 + on the diagonal below
+        for (std::size_t i = 0; i < destination_[q].length; ++i)
+          to[i] = minus_c * from[i];
+    }
   });
+  if (c != nullptr) {
+    for (int k = 0; k < n_; ++k)
+      for (int d = 0; d < b_; ++d) block(k, k)(d, d) = 1.0 + block(k, k)(d, d);
+    for (int d = 0; d < n_g_; ++d) g_(d, d) = 1.0 + g_(d, d);
+  }
 
   if (w_ == 0) {
     // independent blocks (the GMRES preconditioner's): factorised by the worker threads

@@ -49,6 +49,13 @@ class BlockBandedLU {
 
   //! Throws BlockStructureRefused with refusal() when the pattern lacks the structure.
   BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int block_size);
+  //! The cells' diagonal blocks of `pattern` alone (bandwidth 0, no globals): every
+  //! other entry of a matrix in that pattern is left out (the GMRES preconditioner's
+  //! matrix, src/solver/cell_block_preconditioner.hpp). Throws std::invalid_argument
+  //! when the cells do not fit the pattern.
+  struct CellBlocksOnly {};
+  BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int block_size,
+                CellBlocksOnly);
   // The pivot blocks' LUs refer to the blocks' storage (in place): a copy would refer
   // to the original's; a move keeps the storage.
   BlockBandedLU(const BlockBandedLU&) = delete;
@@ -66,6 +73,10 @@ class BlockBandedLU {
   //! pivot block (or G) has a zero or non-finite pivot; the factors are then unusable
   //! until the next successful call.
   bool factorize(std::span<const double> values);
+  //! Factorises the Newton matrix I - c J of the Jacobian whose values, in the pattern's
+  //! order, are `jacobian`: entry by entry as newton_matrix (sparsity.hpp) forms it, the
+  //! same bits, without a copy of the values in between.
+  bool factorize_newton(std::span<const double> jacobian, double c);
   //! x <- M^-1 x, with the factors of the last successful factorize(). false: the
   //! solution is not finite.
   bool solve(std::span<double> x) const;
@@ -79,6 +90,14 @@ class BlockBandedLU {
   std::size_t slot(int i, int j) const {
     return static_cast<std::size_t>(i) * (2 * w_ + 1) + (j - i + w_);
   }
+  //! The band blocks, G and C (sized), the LUs' slots and the scratch vectors.
+  void allocate(long n_coupling);
+  //! Adds pattern entry p (row r, column c) to the destinations, merged into the last
+  //! run where it continues it.
+  void add_destination(std::size_t p, double* to);
+  //! The matrix from `values` in the pattern's order (times -c, and 1 + on the
+  //! diagonal, for the Newton matrix), then its factors.
+  bool fill_and_factorize(std::span<const double> values, const double* c);
   //! LU of the pivot block k, in place.
   void factorize_pivot(int k);
   //! y -= block (i, j) x, the block's sparse copy when it has one (lower blocks).

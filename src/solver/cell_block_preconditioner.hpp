@@ -5,9 +5,10 @@
 //! and, for the global variables (booked masses), their diagonal. Everything between
 //! cells (transport) and between cells and globals is left to the Krylov iteration.
 //! The cells' part is the block solver's matrix at bandwidth 0: a BlockBandedLU
-//! (src/solver/block_banded_lu.hpp) of the pattern of the cells' diagonal blocks, which
-//! gathers each block and factorises it with partial pivoting (Eigen::PartialPivLU);
-//! nothing is pivoted between cells, and none need be: P's blocks are independent.
+//! (src/solver/block_banded_lu.hpp) of the cells' diagonal blocks of J's pattern, which
+//! gathers each block from J, forms I - gamma J there and factorises it in place with
+//! partial pivoting (Eigen::PartialPivLU); nothing is pivoted between cells, and none
+//! need be: P's blocks are independent.
 //! Storage: one b x b LU per cell (b variables per cell) and one pivot per global.
 #include <span>
 #include <vector>
@@ -34,25 +35,13 @@ class CellBlockPreconditioner {
   long stored_doubles() const;
 
  private:
-  //! Delegated to with the pattern of the cells' diagonal blocks (each block's
-  //! diagonal included), over the cells' variables only: kept by none of the members
-  //! once built.
-  CellBlockPreconditioner(const SparsityPattern& pattern,
-                          const SparsityPattern& block_pattern, int n_cells,
-                          int n_cell_vars);
+  //! The cells' blocks of `pattern` as a BlockBandedLU; throws std::invalid_argument
+  //! naming this class when they do not fit.
+  static BlockBandedLU cells_of(const SparsityPattern& pattern, int n_cells,
+                                int n_cell_vars);
 
   long n_cell_part_ = 0;
-  //! J_cc's entries from the Jacobian: each run of consecutive entries of the block
-  //! pattern [to, to + length) from consecutive positions [from, from + length) of the
-  //! Jacobian's pattern (one run per column of a dense cell block).
-  struct CopyRun {
-    std::size_t from = 0, to = 0, length = 0;
-  };
-  std::vector<CopyRun> source_;
-  std::vector<std::size_t> block_diagonal_;  //!< the block pattern's diagonal positions
-  std::vector<double>
-      block_values_;     //!< J_cc, then I - gamma J_cc (the block pattern's order)
-  BlockBandedLU cells_;  //!< its factors (bandwidth 0)
+  BlockBandedLU cells_;                //!< its factors (bandwidth 0)
   std::vector<long> global_diagonal_;  //!< pattern position of each global's diagonal
   std::vector<double> global_pivot_;   //!< 1 - gamma J_gg of each global
 };

@@ -48,36 +48,6 @@ SparsityPattern::SparsityPattern(PatternBuilder&& builder) : n_(builder.size()) 
     row_index_.push_back(row);
   }
   for (long c = 0; c < n_; ++c) col_ptr_[c + 1] += col_ptr_[c];
-  find_runs();
-}
-
-SparsityPattern::SparsityPattern(long n, std::vector<sunindextype> col_ptr,
-                                 std::vector<sunindextype> row_index)
-    : n_(n), col_ptr_(std::move(col_ptr)), row_index_(std::move(row_index)) {
-  const bool sized = n_ >= 0 && col_ptr_.size() == static_cast<std::size_t>(n_) + 1 &&
-                     col_ptr_.front() == 0 &&
-                     col_ptr_.back() == static_cast<sunindextype>(row_index_.size());
-  for (long c = 0; sized && c < n_; ++c) {
-    bool diagonal = false;
-    for (auto p = col_ptr_[c]; p < col_ptr_[c + 1]; ++p) {
-      const auto row = row_index_[static_cast<std::size_t>(p)];
-      if (row < 0 || row >= n_ ||
-          (p > col_ptr_[c] && row <= row_index_[static_cast<std::size_t>(p) - 1]))
-        throw std::logic_error("SparsityPattern: column " + std::to_string(c) +
-                               "'s rows are not increasing within the matrix");
-      diagonal = diagonal || row == c;
-    }
-    if (!diagonal)
-      throw std::logic_error("SparsityPattern: column " + std::to_string(c) +
-                             " lacks its diagonal entry");
-  }
-  if (!sized)
-    throw std::logic_error("SparsityPattern: CSC arrays of the wrong sizes for n = " +
-                           std::to_string(n_));
-  find_runs();
-}
-
-void SparsityPattern::find_runs() {
   run_ptr_.assign(static_cast<std::size_t>(n_) + 1, 0);
   for (long c = 0; c < n_; ++c) {
     for (auto p = col_ptr_[c]; p < col_ptr_[c + 1]; ++p) {

@@ -46,12 +46,6 @@ class SparsityPattern {
   explicit SparsityPattern(PatternBuilder&& builder);
   explicit SparsityPattern(const PatternBuilder& builder)
       : SparsityPattern(PatternBuilder(builder)) {}
-  //! From compressed-sparse-column arrays whose rows increase strictly within each
-  //! column and include every diagonal entry (what the builder's pattern has), without
-  //! a builder's list of entries: the filter of a pattern (CellBlockPreconditioner).
-  //! Throws std::logic_error when the arrays are not so.
-  SparsityPattern(long n, std::vector<sunindextype> col_ptr,
-                  std::vector<sunindextype> row_index);
 
   long size() const { return n_; }
   long nnz() const { return static_cast<long>(row_index_.size()); }
@@ -82,8 +76,6 @@ class SparsityPattern {
   struct RowRun {
     sunindextype first_row, length;
   };
-  //! run_ptr_ and runs_ from col_ptr_ and row_index_.
-  void find_runs();
   long n_ = 0;
   std::vector<sunindextype> col_ptr_, row_index_;
   //! Column c's runs are runs_[run_ptr_[c]] .. runs_[run_ptr_[c + 1] - 1].

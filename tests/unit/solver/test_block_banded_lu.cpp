@@ -139,6 +139,40 @@ TEST(BlockBandedLU, IndependentBlocksInPlaceGiveTheBitsOfEigensLuAndSurviveAMove
   }
 }
 
+// The Newton matrix I - c J formed while the values are gathered gives the bits of
+// newton_matrix's matrix factorised; with the cells' blocks alone (the GMRES
+// preconditioner's), every entry outside them is left out.
+TEST(BlockBandedLU, NewtonMatrixFromTheJacobianGivesTheBitsOfNewtonMatrixFactorised) {
+  const int n_blocks = 6, b = 7;
+  const double c = 0.3;
+  const RandomSystem s = random_system(n_blocks, b, 1, 2, true, 9);
+  std::vector<double> m(s.values.size());
+  newton_matrix(s.values, s.pattern.diagonal_positions(), c, m);
+  BlockBandedLU from_j(s.pattern, n_blocks, b), from_m(s.pattern, n_blocks, b);
+  ASSERT_TRUE(from_j.factorize_newton(s.values, c));
+  ASSERT_TRUE(from_m.factorize(m));
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(s.dense.rows(), -1.0, 2.0);
+  std::vector<double> x1(rhs.begin(), rhs.end()), x2 = x1;
+  ASSERT_TRUE(from_j.solve(x1));
+  ASSERT_TRUE(from_m.solve(x2));
+  EXPECT_EQ(x1, x2);
+
+  BlockBandedLU cells(s.pattern, n_blocks, b, BlockBandedLU::CellBlocksOnly{});
+  EXPECT_EQ(cells.bandwidth(), 0);
+  EXPECT_EQ(cells.n_globals(), 0);
+  ASSERT_TRUE(cells.factorize_newton(s.values, c));
+  std::vector<double> x(rhs.data(), rhs.data() + n_blocks * b);
+  ASSERT_TRUE(cells.solve(x));
+  for (int k = 0; k < n_blocks; ++k) {
+    Eigen::MatrixXd block = (-c) * s.dense.block(k * b, k * b, b, b);
+    for (int d = 0; d < b; ++d) block(d, d) = 1.0 + block(d, d);
+    const Eigen::VectorXd ref = block.partialPivLu().solve(rhs.segment(k * b, b));
+    for (int r = 0; r < b; ++r) EXPECT_EQ(x[k * b + r], ref(r)) << "cell " << k;
+  }
+  EXPECT_THROW(BlockBandedLU(s.pattern, n_blocks + 2, b, BlockBandedLU::CellBlocksOnly{}),
+               std::invalid_argument);
+}
+
 // A second factorisation of other values in the same pattern starts from zero blocks:
 // the fill of the first leaves nothing behind.
 TEST(BlockBandedLU, RefactorisationOfNewValues) {

@@ -99,31 +99,6 @@ TEST(Sparsity, RepeatedAndUnorderedEntriesGiveTheSortedUniquePattern) {
   }
 }
 
-// The pattern from CSC arrays (a filter of another pattern, without a builder) is the
-// builder's pattern of the same entries, its products included; arrays that are not a
-// pattern's are refused.
-TEST(Sparsity, FromCscArraysIsTheBuildersPatternOfTheSameEntries) {
-  const SparsityPattern built = four_by_four();
-  const SparsityPattern from_csc(
-      4, std::vector<sunindextype>(built.col_ptr().begin(), built.col_ptr().end()),
-      std::vector<sunindextype>(built.row_index().begin(), built.row_index().end()));
-  ASSERT_EQ(from_csc.nnz(), built.nnz());
-  for (long r = 0; r < 4; ++r)
-    for (long c = 0; c < 4; ++c) EXPECT_EQ(from_csc.position(r, c), built.position(r, c));
-  EXPECT_EQ(from_csc.diagonal_positions(), built.diagonal_positions());
-  const std::vector<double> values{1.5, -2.0, 3.0, 0.25, 4.0, -1.0, 2.0, 0.5, 7.0};
-  ASSERT_EQ(static_cast<long>(values.size()), built.nnz());
-  const std::vector<double> x{0.3, -1.2, 2.5, 0.7};
-  std::vector<double> y1(4), y2(4);
-  built.multiply(values, x, y1);
-  from_csc.multiply(values, x, y2);
-  EXPECT_EQ(y1, y2);
-  // column 0 without its diagonal; rows out of order; wrong sizes
-  EXPECT_THROW(SparsityPattern(2, {0, 1, 2}, {1, 1}), std::logic_error);
-  EXPECT_THROW(SparsityPattern(2, {0, 2, 3}, {1, 0, 1}), std::logic_error);
-  EXPECT_THROW(SparsityPattern(2, {0, 1}, {0}), std::logic_error);
-}
-
 TEST(Sparsity, ProductByRunsOfRowsIsTheEntryByEntrySumToTheBit) {
   // dense 5 x 5 cell blocks (one run of rows per column), transport-like couplings to
   // the neighbouring cells' same rows, and random entries that break runs anywhere
