@@ -115,12 +115,23 @@ struct CoefficientWorkspace {
   CompactPairTable compact_pairs;    //!< porous: the pairs of two compact bins
   BinProperties bins;                //!< per bin, at phi
   std::vector<BinSpeedTerms> terms;  //!< per bin, at St
-  std::vector<double> dv;            //!< N x N [cm s^-1]
+  //! The pair speeds dv (N x N [cm s^-1]) and, for the Jacobian, dv_step (with one bin
+  //! perturbed: at (i, j), bin i). A call reads them only while it runs, so a caller
+  //! that keeps a workspace per cell may point `speeds_in` at storage of its worker
+  //! thread's for the call (SizeDistribution): then no cell keeps them.
+  struct PairSpeedScratch {
+    std::vector<double> dv, dv_step;
+  };
+  PairSpeedScratch own_speeds;
+  PairSpeedScratch* speeds_in = nullptr;
+  PairSpeedScratch& pair_speeds() {
+    return speeds_in != nullptr ? *speeds_in : own_speeds;
+  }
   //! Jacobian: the perturbed bins (when the caller passes none), the pair speeds with
   //! one bin perturbed (at (i, j): bin i) and the targets' compression slopes, plain
   //! and perturbed
   PerturbedBins perturbed;
-  std::vector<double> dv_step, s_c, s_c_step;
+  std::vector<double> s_c, s_c_step;
   //! The mass terms of every pair of a grid: at (i, j), j <= i, pair_masses(m_i, m_j).
   //! They depend on the grid alone, so the cells of a disk share one table.
   struct PairMassTable {
@@ -236,13 +247,14 @@ inline CellCoefficients cell_coefficients(
   // the pair speeds (spec §3), the kernel (spec §15.2) and the outcome probabilities
   // (pair_loss_probability: fragmentation and cratering, spec §15.2)
   const bool losses = s.fragmentation || s.cratering;
-  ws.dv.resize(nn);
+  CoefficientWorkspace::PairSpeedScratch& pair = ws.pair_speeds();
+  pair.dv.resize(nn);
   c.kernel.resize(nn);
   if (losses)
     c.p_frag.resize(nn);
   else
     c.p_frag.clear();
-  if (table != nullptr) table->fill_rates(ws.compact, ws.dv, c.kernel, c.p_frag);
+  if (table != nullptr) table->fill_rates(ws.compact, pair.dv, c.kernel, c.p_frag);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) {
       const std::size_t ij = static_cast<std::size_t>(i) * n + j;
@@ -251,7 +263,7 @@ inline CellCoefficients cell_coefficients(
       // pair_rates (compact_pair_table.hpp) written out: the same bits, and the
       // compiler inlines the pair's functions here as without the table
       const double v = ws.speeds.dv(ws.terms[i], ws.terms[j], i, j);
-      ws.dv[ij] = ws.dv[ji] = v;
+      pair.dv[ij] = pair.dv[ji] = v;
       c.kernel[ij] = c.kernel[ji] =
           pair_kernel(bins.a[i], bins.a[j], bins.h_d[i], bins.h_d[j], v);
       if (losses)
@@ -260,7 +272,7 @@ inline CellCoefficients cell_coefficients(
     }
   if (!derivatives) c.dlnk_dlnu.clear();
   if (!porous) return c;
-  const std::vector<double>& dv = ws.dv;
+  const std::vector<double>& dv = pair.dv;
 
   // for the Jacobian: d ln K_ij / d ln u_i, a forward difference in bin i's filling
   // factor through its radius, St, h_d and every pair speed (the kernel is the part of
@@ -269,7 +281,7 @@ inline CellCoefficients cell_coefficients(
   if (derivatives) {
     c.dlnk_dlnu.resize(nn);
     if (losses) c.dp_dlnu.assign(nn, 0.0);
-    ws.dv_step.resize(nn);
+    pair.dv_step.resize(nn);
     if (perturbed == nullptr) {
       perturbed_bins(m, phi, sp.rho0, gas, o.drag, ws.perturbed);
       perturbed = &ws.perturbed;
@@ -286,7 +298,7 @@ inline CellCoefficients cell_coefficients(
       const double k = pair_kernel(a_i, self ? a_i : bins.a[j], h_i,
                                    self ? h_i : bins.h_d[j], v);  // spec §15.2
       const std::size_t ij = static_cast<std::size_t>(i) * n + j;
-      ws.dv_step[ij] = v;
+      pair.dv_step[ij] = v;
       c.dlnk_dlnu[ij] = std::log(k / c.kernel[ij]) / step;
       if (losses) {
         const int hi = i > j ? i : j, lo = i > j ? j : i;
@@ -329,7 +341,7 @@ inline CellCoefficients cell_coefficients(
       // for the Jacobian: d by ln u_i and ln u_j, through the volumes, the impact
       // energy and (u_i) the target's compression slope
       const double ue = std::exp(step);
-      const double e_i = impact_energy(pm, ws.dv_step[ij]);
+      const double e_i = impact_energy(pm, pair.dv_step[ij]);
       const double u_j_step = i == j ? u[j] * ue : u[j];
       c.dd_dlnu_i[ij] =
           (product_ln_u_ratio(pm, u[i] * ue, u_j_step, e_i, e_threshold, ws.s_c_step[i]) -
@@ -337,7 +349,7 @@ inline CellCoefficients cell_coefficients(
           step;
       if (i != j) {
         const double e_j =
-            impact_energy(pm, ws.dv_step[static_cast<std::size_t>(j) * n + i]);
+            impact_energy(pm, pair.dv_step[static_cast<std::size_t>(j) * n + i]);
         c.dd_dlnu_j[ij] =
             (product_ln_u_ratio(pm, u[i], u[j] * ue, e_j, e_threshold, s_c) -
              c.ln_u_ratio[ij]) /

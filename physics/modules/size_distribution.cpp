@@ -130,7 +130,7 @@ coag::BinPorosity SizeDistribution::porosity(int cell, int k,
 
 std::vector<SizeDistribution::WorkerScratch>& SizeDistribution::workers() const {
   const auto n = static_cast<std::size_t>(worker_threads());
-  while (workers_.size() < n) workers_.push_back({engine_, {}, {}, {}, {}, {}});
+  while (workers_.size() < n) workers_.push_back({engine_, {}, {}, {}, {}, {}, {}});
   return workers_;
 }
 
@@ -175,6 +175,7 @@ void SizeDistribution::update_porous(std::span<const double> y, bool coefficient
     if (stokes) update_stokes(i, y, derivatives, w);
     if (!coefficients || !opt_.coagulation) return;
     const long base = layout_.index(i, slot0_);
+    workspace_[i].speeds_in = &w.pair_speeds;
     coef_[i] = coag::cell_coefficients(
         engine_, y.subspan(base, nb), y.subspan(base + nb, nb), gas_now_[i],
         cell_model(i), false, &workspace_[i], std::move(coef_[i]));
@@ -491,6 +492,7 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
       // the cell's coefficients with their derivatives by ln u into the worker's
       // storage, on the cell's perturbed bins (update_stokes again: the same values)
       update_stokes(i, y, true, w);
+      workspace_[i].speeds_in = &w.pair_speeds;
       w.coef = coag::cell_coefficients(
           engine_, y.subspan(base, nb), y.subspan(base + nb, nb), gas_now_[i],
           cell_model(i), true, &workspace_[i], std::move(w.coef), &w.perturbed);

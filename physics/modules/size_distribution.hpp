@@ -223,6 +223,8 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
     //! porous Jacobian: the coefficients of the cell at hand with their derivatives by
     //! ln u (N x N matrices that only the Jacobian reads, so that no cell keeps them)
     physics::coagulation::CellCoefficients coef;
+    //! porous: the pair speeds of the cell at hand (CoefficientWorkspace::speeds_in)
+    physics::coagulation::CoefficientWorkspace::PairSpeedScratch pair_speeds;
   };
 
   //! The coefficients and St of every bin of `cell` from its gas (compact; with
