@@ -175,10 +175,11 @@ void SizeDistribution::update_porous(std::span<const double> y, bool coefficient
     if (stokes) update_stokes(i, y, derivatives, w);
     if (!coefficients || !opt_.coagulation) return;
     const long base = layout_.index(i, slot0_);
-    workspace_[i].speeds_in = &w.pair_speeds;
+    workspace_[i].speeds_in = &w.pair_speeds;  // for this call (the worker's)
     coef_[i] = coag::cell_coefficients(
         engine_, y.subspan(base, nb), y.subspan(base + nb, nb), gas_now_[i],
         cell_model(i), false, &workspace_[i], std::move(coef_[i]));
+    workspace_[i].speeds_in = nullptr;
   });
   if (stokes) st_state_.assign(y.begin(), y.end());
 }
@@ -492,10 +493,11 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
       // the cell's coefficients with their derivatives by ln u into the worker's
       // storage, on the cell's perturbed bins (update_stokes again: the same values)
       update_stokes(i, y, true, w);
-      workspace_[i].speeds_in = &w.pair_speeds;
+      workspace_[i].speeds_in = &w.pair_speeds;  // for this call (the worker's)
       w.coef = coag::cell_coefficients(
           engine_, y.subspan(base, nb), y.subspan(base + nb, nb), gas_now_[i],
           cell_model(i), true, &workspace_[i], std::move(w.coef), &w.perturbed);
+      workspace_[i].speeds_in = nullptr;
       c = &w.coef;
     }
     w.engine.jacobian(*c, y.subspan(base, nb),

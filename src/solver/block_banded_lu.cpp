@@ -135,33 +135,34 @@ void BlockBandedLU::add_destination(std::size_t p, double* to) {
 }
 
 bool BlockBandedLU::factorize(std::span<const double> values) {
-  return fill_and_factorize(values, nullptr);
+  return fill_and_factorize(values, std::nullopt);
 }
 
 bool BlockBandedLU::factorize_newton(std::span<const double> jacobian, double c) {
-  return fill_and_factorize(jacobian, &c);
+  return fill_and_factorize(jacobian, c);
 }
 
-bool BlockBandedLU::fill_and_factorize(std::span<const double> values, const double* c) {
+bool BlockBandedLU::fill_and_factorize(std::span<const double> values,
+                                       std::optional<double> newton_c) {
   // zeroed and filled in bands by the worker threads: every entry has a destination of
   // its own
   parallel_bands(blocks_.size(), [&](std::size_t lo, std::size_t hi) {
     for (std::size_t b = lo; b < hi; ++b) blocks_[b].setZero();
   });
   g_.setZero();
-  const double minus_c = c != nullptr ? -*c : 0.0;
+  const double minus_c = newton_c ? -*newton_c : 0.0;
   parallel_bands(destination_.size(), [&](std::size_t lo, std::size_t hi) {
     for (std::size_t q = lo; q < hi; ++q) {
       const double* from = values.data() + destination_[q].from;
       double* to = destination_[q].to;
-      if (c == nullptr)
+      if (!newton_c)
         std::copy_n(from, destination_[q].length, to);
       else  // newton_matrix's (-c) J, then 1 + on the diagonal below
         for (std::size_t i = 0; i < destination_[q].length; ++i)
           to[i] = minus_c * from[i];
     }
   });
-  if (c != nullptr) {
+  if (newton_c) {
     for (int k = 0; k < n_; ++k)
       for (int d = 0; d < b_; ++d) block(k, k)(d, d) = 1.0 + block(k, k)(d, d);
     for (int d = 0; d < n_g_; ++d) g_(d, d) = 1.0 + g_(d, d);

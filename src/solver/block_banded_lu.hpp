@@ -92,12 +92,12 @@ class BlockBandedLU {
   }
   //! The band blocks, G and C (sized), the LUs' slots and the scratch vectors.
   void allocate(long n_coupling);
-  //! Adds pattern entry p (row r, column c) to the destinations, merged into the last
-  //! run where it continues it.
+  //! Adds pattern entry p, which goes to `to`, to the destinations: merged into the
+  //! last run where it continues it.
   void add_destination(std::size_t p, double* to);
-  //! The matrix from `values` in the pattern's order (times -c, and 1 + on the
-  //! diagonal, for the Newton matrix), then its factors.
-  bool fill_and_factorize(std::span<const double> values, const double* c);
+  //! The matrix from `values` in the pattern's order (with `newton_c`, the Newton
+  //! matrix: times -c, and 1 + on the diagonal), then its factors.
+  bool fill_and_factorize(std::span<const double> values, std::optional<double> newton_c);
   //! LU of the pivot block k, in place.
   void factorize_pivot(int k);
   //! y -= block (i, j) x, the block's sparse copy when it has one (lower blocks).
