@@ -157,9 +157,8 @@ void SizeDistribution::update_stokes(int cell, std::span<const double> y,
 
 void SizeDistribution::update_porous(std::span<const double> y, bool coefficients,
                                      bool derivatives) const {
-  const int nb = n_bins_;
   workspace_.resize(grid_.n_cells());
-  if (coefficients && opt_.coagulation) {
+  if (opt_.coagulation) {
     // one table of the pairs' mass terms for every cell (the same grid)
     workspace_[0].set_grid(engine_.grid().m);
     for (auto& w : workspace_)
@@ -174,14 +173,24 @@ void SizeDistribution::update_porous(std::span<const double> y, bool coefficient
     WorkerScratch& w = ws[static_cast<std::size_t>(worker)];
     if (stokes) update_stokes(i, y, derivatives, w);
     if (!coefficients || !opt_.coagulation) return;
-    const long base = layout_.index(i, slot0_);
-    workspace_[i].speeds_in = &w.pair_speeds;  // for this call (the worker's)
-    coef_[i] = coag::cell_coefficients(
-        engine_, y.subspan(base, nb), y.subspan(base + nb, nb), gas_now_[i],
-        cell_model(i), false, &workspace_[i], std::move(coef_[i]));
-    workspace_[i].speeds_in = nullptr;
+    coef_[i] = porous_coefficients(i, y, false, w);
   });
   if (stokes) st_state_.assign(y.begin(), y.end());
+}
+
+const coag::CellCoefficients& SizeDistribution::porous_coefficients(
+    int cell, std::span<const double> y, bool derivatives, WorkerScratch& w) const {
+  const long base = layout_.index(cell, slot0_);
+  // the Jacobian's forward differences run on the cell's perturbed bins
+  // (update_stokes again: the same St and d St / d ln u as update_porous wrote)
+  if (derivatives) update_stokes(cell, y, true, w);
+  workspace_[cell].speeds_in = &w.pair_speeds;  // for this call (the worker's)
+  w.coef = coag::cell_coefficients(
+      engine_, y.subspan(base, n_bins_), y.subspan(base + n_bins_, n_bins_),
+      gas_now_[cell], cell_model(cell), derivatives, &workspace_[cell], std::move(w.coef),
+      derivatives ? &w.perturbed : nullptr);
+  workspace_[cell].speeds_in = nullptr;
+  return w.coef;
 }
 
 std::span<const double> SizeDistribution::bin_stokes_numbers(
@@ -366,7 +375,7 @@ void SizeDistribution::declare_pattern(PatternBuilder& p) const {
 
 void SizeDistribution::add_transport(std::span<const double> y,
                                      std::span<double> ydot) const {
-  if (porous_) update_porous(y, opt_.coagulation, false);
+  if (porous_) update_porous(y, false, false);  // St; the coefficients in add_rhs
   const int n = grid_.n_cells(), nb = n_bins_;
   std::vector<FlowTarget> targets;
   for (int f = 0; f < n; ++f) {
@@ -395,7 +404,7 @@ void SizeDistribution::add_transport(std::span<const double> y,
 
 void SizeDistribution::add_rhs(double, std::span<const double> y,
                                std::span<double> ydot) const {
-  add_transport(y, ydot);  // porous: rebuilds the coefficients from y
+  add_transport(y, ydot);  // porous: the bins' St from y
   if (!opt_.coagulation) return;
   const int nb = n_bins_, nv = cell_vars();
   std::vector<WorkerScratch>& ws = workers();
@@ -404,7 +413,9 @@ void SizeDistribution::add_rhs(double, std::span<const double> y,
     w.out.resize(nv);
     const std::span<double> out(w.out);
     const long base = layout_.index(i, slot0_);
-    w.engine.rhs(coef_[i], y.subspan(base, nb),
+    const coag::CellCoefficients& c =
+        porous_ ? porous_coefficients(i, y, false, w) : coef_[i];
+    w.engine.rhs(c, y.subspan(base, nb),
                  porous_ ? y.subspan(base + nb, nb) : std::span<const double>{},
                  out.first(nb), porous_ ? out.subspan(nb) : std::span<double>{});
     for (int k = 0; k < nv; ++k) ydot[base + k] += out[k];
@@ -488,19 +499,9 @@ void SizeDistribution::add_jacobian(double, std::span<const double> y,
     WorkerScratch& w = ws[static_cast<std::size_t>(worker)];
     w.out.resize(static_cast<std::size_t>(nv) * nv);
     const long base = layout_.index(i, slot0_);
-    const coag::CellCoefficients* c = &coef_[i];
-    if (porous_) {
-      // the cell's coefficients with their derivatives by ln u into the worker's
-      // storage, on the cell's perturbed bins (update_stokes again: the same values)
-      update_stokes(i, y, true, w);
-      workspace_[i].speeds_in = &w.pair_speeds;  // for this call (the worker's)
-      w.coef = coag::cell_coefficients(
-          engine_, y.subspan(base, nb), y.subspan(base + nb, nb), gas_now_[i],
-          cell_model(i), true, &workspace_[i], std::move(w.coef), &w.perturbed);
-      workspace_[i].speeds_in = nullptr;
-      c = &w.coef;
-    }
-    w.engine.jacobian(*c, y.subspan(base, nb),
+    const coag::CellCoefficients& c =
+        porous_ ? porous_coefficients(i, y, true, w) : coef_[i];
+    w.engine.jacobian(c, y.subspan(base, nb),
                       porous_ ? y.subspan(base + nb, nb) : std::span<const double>{},
                       w.out);
     jac.add_dense_block(base, nv, w.out);

@@ -220,8 +220,8 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
     std::vector<double> phi;                        //!< porous, per bin
     physics::coagulation::BinProperties bins;       //!< porous, per bin
     physics::coagulation::PerturbedBins perturbed;  //!< porous Jacobian
-    //! porous Jacobian: the coefficients of the cell at hand with their derivatives by
-    //! ln u (N x N matrices that only the Jacobian reads, so that no cell keeps them)
+    //! porous: the coefficients of the cell at hand (porous_coefficients), so that no
+    //! cell keeps their N x N matrices
     physics::coagulation::CellCoefficients coef;
     //! porous: the pair speeds of the cell at hand (CoefficientWorkspace::speeds_in)
     physics::coagulation::CoefficientWorkspace::PairSpeedScratch pair_speeds;
@@ -233,13 +233,18 @@ class SizeDistribution : public PhysicsModule, public DustCarrier {
   //! The outcome model of `cell`'s species (DustPy's, with erosion Krijt et al.'s on the
   //! unequal pairs: spec §15.2).
   physics::coagulation::CellModel cell_model(int cell) const;
-  //! Porous: the coefficients, St and (with `derivatives`) d St/d ln u of every bin of
-  //! every cell from state y; without `coefficients` only St and their derivatives. St
-  //! are not computed again for the state of st_state_ (without `derivatives`). The
-  //! coefficients' derivatives by ln u are built cell by cell where the Jacobian reads
-  //! them (add_jacobian), and kept by no cell.
+  //! Porous: St and (with `derivatives`) d St/d ln u of every bin of every cell from
+  //! state y, and with `coefficients` every cell's coefficients into coef_ (for
+  //! coefficients()). St are not computed again for the state of st_state_ (without
+  //! `derivatives`). The right-hand side and the Jacobian build the coefficients cell by
+  //! cell where they read them (porous_coefficients), and no cell keeps them.
   void update_porous(std::span<const double> y, bool coefficients,
                      bool derivatives) const;
+  //! Porous: the coefficients of `cell` at state y, with `derivatives` also by ln u
+  //! (after update_stokes with derivatives for the cell's perturbed bins), in the
+  //! worker's storage w.coef: valid until the worker's next call.
+  const physics::coagulation::CellCoefficients& porous_coefficients(
+      int cell, std::span<const double> y, bool derivatives, WorkerScratch& w) const;
   //! Porous: St (and with `derivatives` d St/d ln u, and the perturbed bins in
   //! w.perturbed) of the bins of `cell` at state y.
   void update_stokes(int cell, std::span<const double> y, bool derivatives,
