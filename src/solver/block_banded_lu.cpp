@@ -21,6 +21,15 @@ bool usable(const Lu& lu) {
   return d.allFinite() && (d.size() == 0 || d.minCoeff() > 0.0);
 }
 
+// Why n_blocks cells of block_size variables do not fit `pattern`; empty when they do.
+std::string size_refusal(const SparsityPattern& pattern, int n_blocks, int block_size) {
+  const long n_cell_part = static_cast<long>(n_blocks) * block_size;
+  if (n_blocks < 1 || block_size < 1 || n_cell_part > pattern.size())
+    return std::to_string(n_blocks) + " cells of " + std::to_string(block_size) +
+           " variables do not fit a matrix of size " + std::to_string(pattern.size());
+  return "";
+}
+
 }  // namespace
 
 BlockStructureRefused::BlockStructureRefused(const std::string& why)
@@ -28,11 +37,10 @@ BlockStructureRefused::BlockStructureRefused(const std::string& why)
 
 std::string BlockBandedLU::refusal(const SparsityPattern& pattern, int n_blocks,
                                    int block_size) {
+  if (std::string why = size_refusal(pattern, n_blocks, block_size); !why.empty())
+    return why;
   const long n = pattern.size();
   const long n_cell_part = static_cast<long>(n_blocks) * block_size;
-  if (n_blocks < 1 || block_size < 1 || n_cell_part > n)
-    return std::to_string(n_blocks) + " cells of " + std::to_string(block_size) +
-           " variables do not fit a matrix of size " + std::to_string(n);
   const auto col_ptr = pattern.col_ptr();
   const auto rows = pattern.row_index();
   for (long c = n_cell_part; c < n; ++c)
@@ -88,11 +96,9 @@ BlockBandedLU::BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int b
 BlockBandedLU::BlockBandedLU(const SparsityPattern& pattern, int n_blocks, int block_size,
                              CellBlocksOnly)
     : n_(n_blocks), b_(block_size) {
+  if (const std::string why = size_refusal(pattern, n_blocks, block_size); !why.empty())
+    throw std::invalid_argument(why);
   n_cell_part_ = static_cast<long>(n_) * b_;
-  if (n_blocks < 1 || block_size < 1 || n_cell_part_ > pattern.size())
-    throw std::invalid_argument(
-        std::to_string(n_blocks) + " cells of " + std::to_string(block_size) +
-        " variables do not fit a matrix of size " + std::to_string(pattern.size()));
   allocate(0);
   const auto col_ptr = pattern.col_ptr();
   const auto rows = pattern.row_index();
