@@ -57,13 +57,16 @@ Result run_once(const Config& cfg, long trace_every, bool lts) {
   CvodeIntegrator cvode(sim.model(), times.front(), y0, sim.integrator_options());
   cvode.set_profile(&res.times);
   const bool reinit = cfg.flag("solver.reinit_at_snapshots");
-  bench::LtsEstimate estimate(sim.model().layout(), {sim.transport().sigma_slot()});
+  bench::LtsEstimate estimate(sim.model().layout());
+  std::vector<double> sigma_d(static_cast<std::size_t>(sim.grid().n_cells()));
   for (std::size_t k = 1; k < times.size(); ++k) {
     cvode.advance_to(times[k], [&](double t, long nst) {
       if (lts) {
         const auto info = cvode.step_info(0, true);
+        for (std::size_t c = 0; c < sigma_d.size(); ++c)
+          sigma_d[c] = sim.transport().sigma_d(static_cast<int>(c), cvode.state());
         estimate.add(info.weighted_errors, info.h_last, info.order_last,
-                     times[k] - times[k - 1], cvode.state());
+                     times[k] - times[k - 1], sigma_d);
       }
       if (trace_every <= 0 || nst % trace_every != 0) return;
       const auto info = cvode.step_info(3);

@@ -33,6 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "physics/modules/dust_face_flux.hpp"
+#include "physics/modules/dust_transport.hpp"
 #include "physics/modules/size_distribution.hpp"
 #include "src/core/units.hpp"
 #include "src/core/worker_threads.hpp"
@@ -347,16 +349,12 @@ int main(int argc, char** argv) {
   cvode.set_profile(&cb);
   std::vector<Probe> probes;
   std::map<std::string, long> limiting_kind;  // steps by variable kind ("psi", "sigma_g")
-  std::vector<int> dust_slots;  // a cell's Sigma_d: its bins' sigma_k, or sigma_d
-  const StateLayout& layout = sim.model().layout();
-  for (int v = 0; v < layout.n_cell_vars(); ++v) {
-    const std::string& name = layout.cell_var(v).name;
-    if (name == "sigma_d" ||
-        (name.rfind("sigma_", 0) == 0 && name.size() > 6 &&
-         name.find_first_not_of("0123456789", 6) == std::string::npos))
-      dust_slots.push_back(v);
-  }
-  bench::LtsEstimate estimate(layout, dust_slots);
+  // the module that carries the dust: a cell's Sigma_d for the estimate
+  const DustCarrier& dust = sim.distribution() != nullptr
+                                ? static_cast<const DustCarrier&>(*sim.distribution())
+                                : sim.transport();
+  bench::LtsEstimate estimate(sim.model().layout());
+  std::vector<double> sigma_d(static_cast<std::size_t>(sim.grid().n_cells()));
   long last_nncf = 0, failures_seen = 0;
   SolverStats prev;
   double cpu0 = cpu_seconds(), cpu_prev = cpu0;
@@ -368,8 +366,10 @@ int main(int argc, char** argv) {
     cvode.advance_to(times[k], [&](double t, long) {
       if (lts) {
         const auto info = cvode.step_info(0, true);
+        for (std::size_t c = 0; c < sigma_d.size(); ++c)
+          sigma_d[c] = dust.sigma_d(static_cast<int>(c), cvode.state());
         estimate.add(info.weighted_errors, info.h_last, info.order_last,
-                     times[k] - times[k - 1], cvode.state());
+                     times[k] - times[k - 1], sigma_d);
       }
       if (count_limiting) {
         const auto info = cvode.step_info(1);

@@ -32,15 +32,13 @@ class LtsEstimate {
   //! Cells with Sigma_d below these fractions of the largest count as nearly empty.
   static constexpr double kEmptyBelow[] = {1e-6, 1e-3};
 
-  //! dust_slots: the cell variables whose sum is a cell's Sigma_d (the single size's
-  //! sigma, a distribution's sigma_k).
-  LtsEstimate(const StateLayout& layout, std::vector<int> dust_slots)
-      : layout_(layout), dust_slots_(std::move(dust_slots)) {}
+  explicit LtsEstimate(const StateLayout& layout) : layout_(layout) {}
 
   //! One accepted step: weighted local errors |e_i w_i| of every component, the step's
-  //! size and order, the snapshot interval it lies in [s], and the state after it.
+  //! size and order, the snapshot interval it lies in [s], and each cell's Sigma_d after
+  //! it (DustCarrier::sigma_d) [g cm^-2].
   void add(const std::vector<double>& e, double h, int q, double interval,
-           std::span<const double> y) {
+           std::span<const double> sigma_d) {
     const long n_all = static_cast<long>(e.size());
     double sum2 = 0.0;
     for (double x : e) sum2 += x * x;
@@ -48,9 +46,6 @@ class LtsEstimate {
     if (!(e_glob > 0.0) || !(h > 0.0)) return;
     const int nc = layout_.n_cells(), nv = layout_.n_cell_vars();
     // One step size still, but the cells with little dust left out of the error test.
-    std::vector<double> sigma_d(nc, 0.0);
-    for (int c = 0; c < nc; ++c)
-      for (int s : dust_slots_) sigma_d[c] += y[layout_.index(c, s)];
     const double sigma_max = *std::max_element(sigma_d.begin(), sigma_d.end());
     for (std::size_t k = 0; k < std::size(kEmptyBelow); ++k) {
       double s2 = sum2;
@@ -106,7 +101,6 @@ class LtsEstimate {
 
  private:
   const StateLayout& layout_;
-  std::vector<int> dust_slots_;
   double cell_steps_[std::size(kBlockSizes)][2] = {};
   double coupled_ = 0.0;
   double steps_without_empty_[std::size(kEmptyBelow)] = {};
