@@ -20,6 +20,7 @@
 #include "src/core/error.hpp"
 #include "src/solver/block_linear_solver.hpp"
 #include "src/solver/cell_block_preconditioner.hpp"
+#include "src/solver/conservative_gmres.hpp"
 #include "src/solver/serial_vector_ops.hpp"
 
 namespace panoptic {
@@ -74,54 +75,6 @@ int timed_lsolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
     g_ls_times->lsolve_s += seconds_since(t0);
     ++g_ls_times->n_lsolve;
   }
-  return flag;
-}
-
-// GMRES's solution made conservative (IntegratorOptions::invariant). A direct solve of
-// (I - gamma J) x = b gives c . x = c . b to round-off, c the budget's weights, since
-// c . J = 0 for a conservative model: the booked dust mass then closes to round-off.
-// SPGMR's x misses that by its residual r = b - (I - gamma J) x (the budget drifted by
-// 4e-8 in 470 yr of the porous MMSN). So x gets one step of iterative refinement,
-// z = P^-1 r with the same preconditioner, scaled by alpha = (c . b - c . x) / (c . z),
-// which restores c . x = c . b; alpha ~ 1, as P^-1 r estimates x's error. (The least
-// change of x in CVODE's weighted norm instead puts all of it on the few components of
-// the largest tolerance, and the porous DustPy disk then took 2.5x the steps:
-// tests/bench/results/krylov_solver.md.) CVODE's preconditioner data is its own memory
-// (CVodeSetPreconditioner), whose user data is the integrator's CvodeCallbackData.
-extern "C" int conservative_spgmr_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x,
-                                        N_Vector b, sunrealtype tol) {
-  auto* content = static_cast<SUNLinearSolverContent_SPGMR>(S->content);
-  void* user = nullptr;
-  if (content->PData == nullptr ||
-      CVodeGetUserData(content->PData, &user) != CV_SUCCESS || user == nullptr)
-    return SUNLS_PACKAGE_FAIL_UNREC;
-  auto* d = static_cast<CvodeCallbackData*>(user);
-  const std::span<const double> c = d->invariant;
-  if (c.empty()) return SUNLinSolSolve_SPGMR(S, A, x, b, tol);
-  const std::size_t n = c.size();
-  const std::span<const double> bv = as_span(b);
-  std::vector<double>& r = d->residual;
-  r.assign(bv.begin(), bv.end());  // b, kept before SPGMR runs
-  const int flag = SUNLinSolSolve_SPGMR(S, A, x, b, tol);
-  if (flag != SUNLS_SUCCESS && flag != SUNLS_RES_REDUCED) return flag;
-  const std::span<double> xv = as_mut_span(x);
-  double gamma = 0.0;
-  if (CVodeGetCurrentGamma(content->PData, &gamma) != CV_SUCCESS)
-    return SUNLS_PACKAGE_FAIL_UNREC;
-  d->jx.resize(n);
-  d->pattern->multiply(d->jacobian, xv, d->jx);
-  double cb = 0.0, cx = 0.0;
-  for (std::size_t j = 0; j < n; ++j) {
-    cb += c[j] * r[j];
-    cx += c[j] * xv[j];
-    r[j] -= xv[j] - gamma * d->jx[j];
-  }
-  if (!d->preconditioner->solve(r)) return SUNLS_PSOLVE_FAIL_REC;
-  double cz = 0.0;
-  for (std::size_t j = 0; j < n; ++j) cz += c[j] * r[j];
-  const double alpha = (cb - cx) / cz;
-  if (!std::isfinite(alpha)) return flag;  // r = 0: x is exact
-  for (std::size_t j = 0; j < n; ++j) xv[j] += alpha * r[j];
   return flag;
 }
 
@@ -375,11 +328,15 @@ void CvodeIntegrator::create_krylov_solver() {
   check(CVodeSetJacTimes(cvode_, nullptr, jtimes_callback), "CVodeSetJacTimes");
   check(CVodeSetPreconditioner(cvode_, psetup_callback, psolve_callback),
         "CVodeSetPreconditioner");
-  // conservative_spgmr_solve finds the callback data through SPGMR's preconditioner data
-  if (static_cast<SUNLinearSolverContent_SPGMR>(
-          static_cast<SUNLinearSolver>(LS_)->content)
-          ->PData != cvode_)
+  // conservative_spgmr_solve finds the callback data through SPGMR's preconditioner
+  // data, and runs SPGMR's iteration as created here (preconditioned_gmres)
+  const auto* spgmr = static_cast<SUNLinearSolverContent_SPGMR>(
+      static_cast<SUNLinearSolver>(LS_)->content);
+  if (spgmr->PData != cvode_)
     throw SolverError("GMRES's preconditioner data is not CVODE's memory");
+  if (spgmr->pretype != SUN_PREC_RIGHT || spgmr->gstype != SUN_MODIFIED_GS ||
+      spgmr->max_restarts != 0)
+    throw SolverError("GMRES is not SPGMR's right-preconditioned GMRES without restarts");
   set_step_controls();
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "src/solver/conservative_gmres.hpp"
 #include "src/solver/disk_model.hpp"
 #include "src/solver/integrator.hpp"
 #include "src/solver/solver_stats.hpp"
@@ -45,9 +46,11 @@ struct CvodeCallbackData {
   CellBlockPreconditioner* preconditioner = nullptr;
   long n_jacobian = 0;
   //! GMRES: the budget's weights c (IntegratorOptions::invariant; empty: GMRES's
-  //! solutions are not corrected) and the correction's scratch vectors.
+  //! solutions are not corrected), the Krylov directions and the residual
+  //! (conservative_gmres.hpp).
   std::span<const double> invariant;
-  std::vector<double> residual, jx;
+  GmresDirections gmres;
+  std::vector<double> residual;
 };
 
 //! The counters of the Krylov iteration (solver.linear = "gmres"; zero otherwise) since

@@ -2,7 +2,9 @@
 // src/solver/cell_block_preconditioner.hpp): the preconditioner against a dense inverse
 // of the same blocks; a Newton system (I - gamma J) x = b of the small size-distribution
 // scene solved by SPGMR (products with the assembled J, right preconditioning, as the
-// integrator sets it up) against KLU's solution of the same matrix; the key.
+// integrator sets it up) against KLU's solution of the same matrix, and by SPGMR's
+// iteration as the integrator runs it (src/solver/conservative_gmres.hpp) against
+// SPGMR's; the key.
 #include <gtest/gtest.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -10,6 +12,7 @@
 #include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -20,6 +23,7 @@
 #include "src/model/simulation.hpp"
 #include "src/scene/config.hpp"
 #include "src/solver/cell_block_preconditioner.hpp"
+#include "src/solver/conservative_gmres.hpp"
 #include "src/solver/cvode_integrator.hpp"
 #include "tests/unit/support/config_error.hpp"
 #include "tests/unit/support/jacobian_check.hpp"
@@ -76,10 +80,12 @@ struct NewtonSystem {
   std::vector<double> jac;
   double gamma;
   CellBlockPreconditioner* pre;
+  int n_psolve = 0, n_times = 0;  //!< calls of the preconditioner's solve and of A v
 };
 
 extern "C" int newton_times(void* data, N_Vector v, N_Vector z) {
-  const auto* s = static_cast<NewtonSystem*>(data);
+  auto* s = static_cast<NewtonSystem*>(data);
+  ++s->n_times;
   const std::size_t n = static_cast<std::size_t>(N_VGetLength(v));
   const std::span<const double> vs(N_VGetArrayPointer(v), n);
   const std::span<double> zs(N_VGetArrayPointer(z), n);
@@ -93,7 +99,8 @@ extern "C" int newton_psetup(void* data) {
 }
 extern "C" int newton_psolve(void* data, N_Vector r, N_Vector z, sunrealtype, int) {
   N_VScale(1.0, r, z);
-  const auto* s = static_cast<NewtonSystem*>(data);
+  auto* s = static_cast<NewtonSystem*>(data);
+  ++s->n_psolve;
   return s->pre->solve({N_VGetArrayPointer(z), static_cast<std::size_t>(N_VGetLength(z))})
              ? 0
              : 1;
@@ -108,34 +115,49 @@ double wrms(const std::vector<double>& x, const std::vector<double>& w) {
 
 // A Newton system of the small distribution scene (porous bins: the widest cells), every
 // bin filled, gamma of a 1000 yr step (the transport couples the cells: the block
-// preconditioner alone is not the inverse), right-hand side of unit weighted size. SPGMR
+// preconditioner alone is not the inverse), right-hand side of unit weighted size in
+// CVODE's error weights w.
+class PorousNewtonSystem : public ::testing::Test {
+ protected:
+  Simulation sim{
+      load_scene(small_scene(), std::vector<std::string>{"porosity.enabled=true"})};
+  const SparsityPattern& pattern = sim.model().pattern();
+  const long n = sim.model().layout().size();
+  const std::size_t nz = static_cast<std::size_t>(n);
+  CellBlockPreconditioner pre{pattern, sim.model().layout().n_cells(),
+                              sim.model().layout().n_cell_vars()};
+  NewtonSystem sys{&pattern, std::vector<double>(static_cast<std::size_t>(pattern.nnz())),
+                   1000.0 * units::kYr, &pre};
+  std::vector<double> w = std::vector<double>(nz), b = std::vector<double>(nz);
+  void SetUp() override {
+    const std::vector<double> y = testing::perturbed_state(sim, 3);
+    sim.model().jacobian(0.0, y, sys.jac);
+    const IntegratorOptions opt = sim.integrator_options();
+    std::mt19937 rng(11);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (std::size_t i = 0; i < nz; ++i) {
+      w[i] = 1.0 / (opt.rtol * std::abs(y[i]) + opt.atol[i]);
+      b[i] = normal(rng) / w[i];
+    }
+    ASSERT_EQ(SUNContext_Create(nullptr, &ctx), 0);
+    bv = N_VMake_Serial(n, b.data(), ctx);
+    wv = N_VMake_Serial(n, w.data(), ctx);
+  }
+  void TearDown() override {
+    if (bv != nullptr) N_VDestroy(bv);
+    if (wv != nullptr) N_VDestroy(wv);
+    if (ctx != nullptr) SUNContext_Free(&ctx);
+  }
+  //! b and w as N_Vectors (on their storage) in a SUNDIALS context of their own
+  SUNContext ctx = nullptr;
+  N_Vector bv = nullptr, wv = nullptr;
+};
+
+// SPGMR on PorousNewtonSystem against KLU. SPGMR
 // stops at ||W (b - A x)||_2 < delta = delta_rms sqrt(N), CVODE's form of its Krylov
 // tolerance in the weighted RMS norm (there eplifac 0.05 times the error-test constant;
 // here 1e-6, to see the iteration converge to KLU's solution).
-TEST(KrylovSolver, NewtonSystemMatchesKlu) {
-  Simulation sim(
-      load_scene(small_scene(), std::vector<std::string>{"porosity.enabled=true"}));
-  const DiskModel& model = sim.model();
-  const StateLayout& layout = model.layout();
-  const SparsityPattern& pattern = model.pattern();
-  const std::vector<double> y = testing::perturbed_state(sim, 3);
-  const long n = layout.size();
-  const auto nz = static_cast<std::size_t>(n);
-  CellBlockPreconditioner pre(pattern, layout.n_cells(), layout.n_cell_vars());
-  NewtonSystem sys{&pattern, std::vector<double>(static_cast<std::size_t>(pattern.nnz())),
-                   1000.0 * units::kYr, &pre};
-  model.jacobian(0.0, y, sys.jac);
-  const IntegratorOptions opt = sim.integrator_options();
-  std::vector<double> w(nz), b(nz);
-  std::mt19937 rng(11);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  for (std::size_t i = 0; i < nz; ++i) {
-    w[i] = 1.0 / (opt.rtol * std::abs(y[i]) + opt.atol[i]);
-    b[i] = normal(rng) / w[i];
-  }
-  SUNContext ctx = nullptr;
-  ASSERT_EQ(SUNContext_Create(nullptr, &ctx), 0);
-  N_Vector bv = N_VMake_Serial(n, b.data(), ctx), wv = N_VMake_Serial(n, w.data(), ctx);
+TEST_F(PorousNewtonSystem, SpgmrMatchesKlu) {
   // KLU on A
   SUNMatrix a = SUNSparseMatrix(n, n, pattern.nnz(), CSC_MAT, ctx);
   pattern.copy_structure_to(SUNSparseMatrix_IndexPointers(a),
@@ -189,9 +211,89 @@ TEST(KrylovSolver, NewtonSystemMatchesKlu) {
   SUNLinSolFree(klu);
   SUNMatDestroy(a);
   N_VDestroy(x_klu);
-  N_VDestroy(bv);
-  N_VDestroy(wv);
-  SUNContext_Free(&ctx);
+}
+
+// preconditioned_gmres (src/solver/conservative_gmres.hpp) is SPGMR's solve as CVODE
+// calls it, less SPGMR's last preconditioner solve: on PorousNewtonSystem, for a
+// Krylov dimension of 20 and of 2 and tolerances that take several iterations, one, or
+// none (above |b|), it returns SPGMR's flag, iterations and residual norm, its solution
+// to round-off with one preconditioner solve fewer and as many products, and the
+// residual b - A x of that solution.
+TEST_F(PorousNewtonSystem, PreconditionedGmresIsSpgmrWithoutItsLastSolve) {
+  double beta = 0.0;
+  for (std::size_t i = 0; i < nz; ++i) beta += (w[i] * b[i]) * (w[i] * b[i]);
+  beta = std::sqrt(beta);
+  const auto spgmr = [&](int maxl) {
+    SUNLinearSolver s = SUNLinSol_SPGMR(bv, SUN_PREC_RIGHT, maxl, ctx);
+    SUNLinSolSetATimes(s, &sys, newton_times);
+    SUNLinSolSetPreconditioner(s, &sys, newton_psetup, newton_psolve);
+    SUNLinSolSetScalingVectors(s, wv, wv);
+    SUNLinSolInitialize(s);
+    EXPECT_EQ(SUNLinSolSetup(s, nullptr), 0);
+    return s;
+  };
+  const double tight = 1e-6 * std::sqrt(static_cast<double>(n));
+  // SPGMR's residual after one iteration, to set a tolerance that one iteration meets
+  double rho1 = 0.0;
+  {
+    SUNLinearSolver s = spgmr(1);
+    std::vector<double> x(nz);
+    N_Vector xv = N_VMake_Serial(n, x.data(), ctx);
+    EXPECT_EQ(SUNLinSolSolve(s, nullptr, xv, bv, 0.0), SUNLS_RES_REDUCED);
+    rho1 = SUNLinSolResNorm(s);
+    N_VDestroy(xv);
+    SUNLinSolFree(s);
+  }
+  ASSERT_LT(rho1, beta);  // one iteration reduces the residual
+  struct Case {
+    int maxl;
+    double tol;
+    int flag;
+  };
+  for (const Case c :
+       {Case{20, tight, SUNLS_SUCCESS}, Case{2, tight, SUNLS_RES_REDUCED},
+        Case{20, 1.01 * rho1, SUNLS_SUCCESS}, Case{20, 1.01 * beta, SUNLS_SUCCESS}}) {
+    SUNLinearSolver ref = spgmr(c.maxl), ours = spgmr(c.maxl);
+    std::vector<double> x_ref(nz), x(nz), r, ax(nz), diff(nz), r_check(nz);
+    N_Vector xr = N_VMake_Serial(n, x_ref.data(), ctx),
+             xv = N_VMake_Serial(n, x.data(), ctx);
+    N_Vector axv = N_VMake_Serial(n, ax.data(), ctx);
+    sys.n_psolve = sys.n_times = 0;
+    SUNLinSolSetZeroGuess(ref, SUNTRUE);
+    EXPECT_EQ(SUNLinSolSolve(ref, nullptr, xr, bv, c.tol), c.flag)
+        << c.maxl << " " << c.tol;
+    const int ref_psolve = sys.n_psolve, ref_times = sys.n_times;
+    const int iterations = SUNLinSolNumIters(ref);
+    sys.n_psolve = sys.n_times = 0;
+    GmresDirections directions;
+    EXPECT_EQ(preconditioned_gmres(ours, xv, bv, c.tol, directions, r), c.flag);
+    EXPECT_EQ(SUNLinSolNumIters(ours), iterations);
+    EXPECT_EQ(SUNLinSolLastFlag(ours), c.flag);
+    EXPECT_NEAR(SUNLinSolResNorm(ours), SUNLinSolResNorm(ref),
+                1e-12 * SUNLinSolResNorm(ref));
+    EXPECT_EQ(sys.n_times, ref_times);
+    EXPECT_EQ(sys.n_psolve, iterations > 0 ? ref_psolve - 1 : 0);
+    for (std::size_t i = 0; i < nz; ++i) diff[i] = x[i] - x_ref[i];
+    EXPECT_LE(wrms(diff, w), 1e-12 * wrms(x_ref, w));
+    newton_times(&sys, xv, axv);
+    for (std::size_t i = 0; i < nz; ++i) r_check[i] = r[i] - (b[i] - ax[i]);
+    // to the round-off of the products A z_l and A x, whose terms x_j - gamma J_ij x_j
+    // are far larger than their sums (they cancel): sum_j |A_ij| |x_j| sets its scale
+    std::vector<double> abs_jac(sys.jac.size()), abs_x(nz), terms(nz);
+    for (std::size_t k = 0; k < abs_jac.size(); ++k) abs_jac[k] = std::abs(sys.jac[k]);
+    for (std::size_t i = 0; i < nz; ++i) abs_x[i] = std::abs(x[i]);
+    pattern.multiply(abs_jac, abs_x, terms);
+    for (std::size_t i = 0; i < nz; ++i) terms[i] = abs_x[i] + sys.gamma * terms[i];
+    EXPECT_LT(wrms(r_check, w), 16.0 * DBL_EPSILON * (wrms(terms, w) + wrms(b, w)));
+    std::printf(
+        "Krylov dimension %d, tolerance %.3g: %d iterations, residual %.3g; x - x_spgmr "
+        "%.2g, r - (b - A x) %.2g (|A| |x| %.3g)\n",
+        c.maxl, c.tol, iterations, SUNLinSolResNorm(ours), wrms(diff, w),
+        wrms(r_check, w), wrms(terms, w));
+    for (N_Vector v : {xr, xv, axv}) N_VDestroy(v);
+    SUNLinSolFree(ref);
+    SUNLinSolFree(ours);
+  }
 }
 
 // The budget's weights c (Simulation::budget_weights, the invariant GMRES's solutions
