@@ -159,11 +159,10 @@ LinearSolverKind Simulation::resolve_linear_solver() const {
   // auto: a size distribution couples its bins (2 x bins variables when porous) densely
   // within a cell. There the block solver factorises in half KLU's time. GMRES with the
   // cells' blocks as preconditioner, its solutions made conservative
-  // (cvode_integrator.cpp, conservative_spgmr_solve), costs a porous distribution
-  // 0.5-0.8x the block solver's time and a compact one 0.85x
-  // (tests/bench/results/krylov_solver.md). The compact ones keep the block solver,
-  // whose solutions are KLU's to round-off and with which the DustPy comparison was
-  // measured.
+  // (src/solver/conservative_gmres.hpp), costs a porous distribution 0.5-0.8x the block
+  // solver's time and a compact one 0.73-0.75x (tests/bench/results/krylov_solver.md).
+  // The compact ones keep the block solver, whose solutions are KLU's to round-off: GMRES
+  // was measured on two compact scenes only.
   if (distribution_ != nullptr && distribution_->porous()) return LinearSolverKind::gmres;
   const StateLayout& L = *layout_;
   return distribution_ != nullptr &&

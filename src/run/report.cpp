@@ -54,8 +54,8 @@ void print_budget(const Simulation& sim, std::span<const double> y) {
   // The terms are integrated with the state, so the budget closes to round-off (<= 7e-14
   // over every scene and the extremes matrix) when the Newton systems are solved
   // directly, and with GMRES, whose solutions are corrected to keep the budget's
-  // invariant (cvode_integrator.cpp, conservative_spgmr_solve): more means a sink or
-  // source that is not booked as a budget term, a bug of the model, not of the
+  // invariant (src/solver/conservative_gmres.hpp, conservative_spgmr_solve): more means a
+  // sink or source that is not booked as a budget term, a bug of the model, not of the
   // integration.
   const double limit = 1e-10;
   if (!(error <= limit))
