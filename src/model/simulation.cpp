@@ -17,7 +17,6 @@
 #include "src/model/initial_state.hpp"
 #include "src/model/module_registry.hpp"
 #include "src/model/scene_to_physics.hpp"
-#include "src/solver/block_banded_lu.hpp"
 
 namespace panoptic {
 
@@ -157,19 +156,12 @@ LinearSolverKind Simulation::resolve_linear_solver() const {
   if (linear == "gmres") return LinearSolverKind::gmres;
   if (linear == "klu") return LinearSolverKind::klu;
   // auto: a size distribution couples its bins (2 x bins variables when porous) densely
-  // within a cell. There the block solver factorises in half KLU's time. GMRES with the
-  // cells' blocks as preconditioner, its solutions made conservative
-  // (src/solver/conservative_gmres.hpp), costs a porous distribution 0.5-0.8x the block
-  // solver's time and a compact one 0.73-0.75x (tests/bench/results/krylov_solver.md).
-  // The compact ones keep the block solver, whose solutions are KLU's to round-off: GMRES
-  // was measured on two compact scenes only.
-  if (distribution_ != nullptr && distribution_->porous()) return LinearSolverKind::gmres;
-  const StateLayout& L = *layout_;
-  return distribution_ != nullptr &&
-                 BlockBandedLU::refusal(model_->pattern(), L.n_cells(), L.n_cell_vars())
-                     .empty()
-             ? LinearSolverKind::block
-             : LinearSolverKind::klu;
+  // within a cell. GMRES with the cells' blocks as preconditioner, its solutions made
+  // conservative (src/solver/conservative_gmres.hpp), costs a porous distribution
+  // 0.5-0.8x the block solver's time and a compact one 0.63-0.78x, with less memory
+  // (tests/bench/results/krylov_solver.md); the block solver, which factorises in half
+  // KLU's time, stays by name. The single size (a few variables per cell) keeps KLU.
+  return distribution_ != nullptr ? LinearSolverKind::gmres : LinearSolverKind::klu;
 }
 
 const char* linear_solver_name(LinearSolverKind kind) {

@@ -85,10 +85,9 @@ std::vector<KeySpec> solver_keys() {
               0, 1e6)),
       when({bdf},
            choice("solver.linear", "auto", {"auto", "klu", "block", "gmres"},
-                  "the solver of CVODE's Newton systems: auto = gmres for a porous size "
-                  "distribution (model.kind = \"distribution\", porosity.enabled), block "
-                  "for a compact one whose Newton systems it can solve, else klu; klu = "
-                  "KLU's sparse LU of the whole matrix, for "
+                  "the solver of CVODE's Newton systems: auto = gmres for a size "
+                  "distribution (model.kind = \"distribution\"), klu for the single "
+                  "size; klu = KLU's sparse LU of the whole matrix, for "
                   "single-size runs (a few variables per cell); block = dense LU of each "
                   "cell's block and block-banded elimination over the cells "
                   "(src/solver/block_banded_lu.hpp): a size distribution in half KLU's "
@@ -98,8 +97,8 @@ std::vector<KeySpec> solver_keys() {
                   "right-preconditioned by the LU of each cell's dense block "
                   "(src/solver/cell_block_preconditioner.hpp), each solution corrected "
                   "to keep the mass budget to round-off: 0.5-0.8x the block solver's "
-                  "time on porous size distributions, 0.85x on compact ones, slow on "
-                  "single-size runs (tests/bench/results/krylov_solver.md)")),
+                  "time on porous size distributions, 0.63-0.78x on compact ones, slow "
+                  "on single-size runs (tests/bench/results/krylov_solver.md)")),
       flag("solver.reinit_at_snapshots", "true",
            "reinitialise CVODE at every snapshot time, so that a run restarted from a "
            "checkpoint is bit-for-bit identical to one never stopped; with gas.evolve "

@@ -3,9 +3,10 @@ item 5): params/tests/distribution_small.toml (12 cells, 50 bins, coagulation wi
 fragmentation, drift, diffusion, the viscous gas) run once straight and once restarted from
 its mid-run checkpoint (.chk.prev.h5, checkpoint.every_snapshots = 2) writes /snapshots
 (sigma(r, m) included), /timeseries and /summary identical in every bit (h5py and h5diff),
-with the same solver statistics; compact, with the snow line (silicate and icy cells,
-sublimation booked), with porous bins (psi_k per bin: phi_bins) and with porosity on the
-track (porosity.bins = "track", with the snow line). And a compact run
+with the same solver statistics; compact (by GMRES, the default, and by the block
+solver), with the snow line (silicate and icy cells, sublimation booked), with porous bins
+(psi_k per bin: phi_bins) and with porosity on the track (porosity.bins = "track", with
+the snow line). And a compact run
 stopped by --max-wall (exit 75, at its first step) continued from its checkpoint.
 With planetesimals per bin (direct coagulation and the d16 streaming instability, their
 thresholds lowered as in test_bin_planetesimals; 6 cells), compact and porous: both
@@ -31,6 +32,8 @@ PLANETESIMALS = ("grid.n_cells=6", "planetesimals.coagulation=true", "planetesim
                  "planetesimals.eps_crit=5e-3")
 CASES = (
     ("compact", [EVERY]),
+    # the block solver, by name since GMRES is solver.linear = "auto"'s choice
+    ("compact_block", [EVERY, 'solver.linear="block"']),
     ("snowline", [EVERY, "snowline.enabled=true"]),
     # porous bins cost ~10x: a shorter run (snapshots at 10, 31, 97, 300 yr)
     ("porous", [EVERY, "porosity.enabled=true", "output.t_end_yr=300.0",

@@ -338,14 +338,14 @@ TEST(BlockBandedSolver, SolverLinearKey) {
   EXPECT_TRUE(may_change_on_restart("solver.linear"));
 }
 
-// solver.linear = "auto": GMRES for a porous size distribution, the block solver for a
-// compact one, KLU for the single size; a choice given by name is kept.
-TEST(BlockBandedSolver, AutoPicksGmresForPorousDistributionsBlockForCompactKluElsewhere) {
+// solver.linear = "auto": GMRES for a size distribution, porous or compact, KLU for the
+// single size; a choice given by name is kept.
+TEST(BlockBandedSolver, AutoPicksGmresForDistributionsKluForTheSingleSize) {
   const std::string dir = std::string(PANOPTIC_SOURCE_DIR) + "/params/";
   const auto solver = [&](const std::string& scene, std::vector<std::string> sets) {
     return Simulation(load_scene(dir + scene, sets)).linear_solver();
   };
-  EXPECT_EQ(solver("tests/distribution_small.toml", {}), LinearSolverKind::block);
+  EXPECT_EQ(solver("tests/distribution_small.toml", {}), LinearSolverKind::gmres);
   EXPECT_EQ(solver("tests/distribution_small.toml", {"porosity.enabled=true"}),
             LinearSolverKind::gmres);
   EXPECT_EQ(solver("tests/distribution_small.toml",
