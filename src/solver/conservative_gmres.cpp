@@ -122,14 +122,17 @@ extern "C" int conservative_spgmr_solve(SUNLinearSolver S, SUNMatrix, N_Vector x
   auto* d = static_cast<CvodeCallbackData*>(user);
   const std::span<const double> c = d->invariant;
   std::vector<double>& r = d->residual;
-  const std::span<double> xv = values(x);
-  const std::size_t n = xv.size();
-  double cb = 0.0, cx = 0.0;
-  for (std::size_t j = 0; j < c.size(); ++j) cb += c[j] * values(b)[j];
   const int flag = preconditioned_gmres(S, x, b, tol, d->gmres, r);
   if (flag != SUNLS_SUCCESS && flag != SUNLS_RES_REDUCED) return flag;
   if (c.empty()) return flag;
-  for (std::size_t j = 0; j < n; ++j) cx += c[j] * xv[j];
+  const std::span<const double> bv = values(b);  // GMRES reads b, writes x and r
+  const std::span<double> xv = values(x);
+  const std::size_t n = xv.size();
+  double cb = 0.0, cx = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    cb += c[j] * bv[j];
+    cx += c[j] * xv[j];
+  }
   if (!d->preconditioner->solve(r)) return SUNLS_PSOLVE_FAIL_REC;
   double cz = 0.0;
   for (std::size_t j = 0; j < n; ++j) cz += c[j] * r[j];
